@@ -1,0 +1,207 @@
+/* ParticleLab plug-in ABI — the only contract between the host (plab) and a
+ * plug-in library. Plain C so that a plug-in built by another compiler, or
+ * years later, still loads: no exceptions, no std:: or Eigen types, no memory
+ * freed on the other side of the boundary.
+ *
+ * A library exports two symbols:
+ *   uint32_t plab_plugin_abi_version(void);        -- must equal PLAB_ABI_VERSION
+ *   int      plab_plugin_init(const plab_registrar*);  -- registers its models/passes
+ * The host checks the version before calling init and refuses a mismatch.
+ *
+ * Contact models are called once per *batch* of contacts over host-owned
+ * structure-of-arrays data (plab_contact_batch). Passes are called once per
+ * cycle phase over all bodies (plab_pass_view).
+ *
+ * Most authors never touch this file: contact_model.hpp and pass.hpp generate
+ * the tables and the batch loop from a C++ class.
+ */
+#ifndef PLAB_ABI_H
+#define PLAB_ABI_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PLAB_ABI_VERSION 1u
+
+/* ---- descriptions ------------------------------------------------------ */
+
+/* Range flags of a property: the bounds are inclusive unless flagged. */
+#define PLAB_MIN_EXCLUSIVE 1u
+#define PLAB_MAX_EXCLUSIVE 2u
+
+typedef struct plab_property_desc {
+    const char* key;      /* scene key, e.g. "kn" */
+    const char* name;     /* field vocabulary, e.g. "normal stiffness" */
+    const char* unit;     /* SI unit, e.g. "N/m"; "1" for dimensionless */
+    double default_value; /* used when the scene does not set it */
+    double min_value;     /* valid range [min, max] (see flags) */
+    double max_value;
+    uint32_t flags;
+    const char* doc;
+} plab_property_desc;
+
+/* What a history slot does when the two ends of a contact are swapped. */
+#define PLAB_SWAP_KEEP 0u   /* scalar (e.g. bond state) */
+#define PLAB_SWAP_NEGATE 1u /* component of a vector acting on end 2 */
+
+typedef struct plab_history_desc {
+    const char* name;
+    double default_value;
+    uint32_t swap_rule;
+    const char* doc;
+} plab_history_desc;
+
+/* How the activity range of a model is measured. */
+#define PLAB_RANGE_GAP 0u      /* active while surface gap <= value  */
+#define PLAB_RANGE_DISTANCE 1u /* active while centre distance <= value */
+
+/* A per-body field a model or pass reads, or accumulates into. */
+typedef struct plab_field_desc {
+    const char* name; /* e.g. "sph_density" */
+    const char* unit;
+    double default_value;
+} plab_field_desc;
+
+/* ---- the contact batch --------------------------------------------------- */
+
+/* Host-owned columns for `count` contacts. Vectors are packed xyz triples
+ * (3*count doubles); in 2D the z components are zero. Convention: the normal
+ * points from end 1 to end 2 and `force` is the force acting ON END 2 (end 1
+ * receives -force), as in PFC. */
+typedef struct plab_contact_batch {
+    uint32_t dim;        /* 2 or 3 */
+    uint32_t count;      /* contacts in this batch */
+    uint32_t end2_is_wall; /* 1: end 2 is a wall facet (infinite mass) */
+    uint32_t history_stride; /* doubles per history row */
+    double dt;           /* timestep, s; 0: re-evaluate forces at this state without advancing history */
+
+    /* inputs, one entry per contact */
+    const int32_t* end1;            /* body index of end 1 */
+    const int32_t* end2;            /* body index, or facet index if wall */
+    const uint8_t* active;          /* 0: outside the activity range */
+    const double* normal;           /* 3*count, unit */
+    const double* gap;              /* surface gap, m (negative: overlap) */
+    const double* distance;         /* centre(-to-surface) distance, m */
+    const double* rel_velocity;     /* 3*count, v(end2) - v(end1) at the contact point, m/s */
+    const double* rel_angular_velocity; /* 3*count, w2 - w1, rad/s */
+    const double* radius1;          /* m */
+    const double* radius2;          /* m (0 for walls) */
+    const double* mass1;            /* kg */
+    const double* mass2;            /* kg (+inf for walls) */
+    const double* eff_mass;         /* m1 m2/(m1+m2), kg */
+    const double* eff_radius;       /* r1 r2/(r1+r2), m */
+
+    /* per-body field columns the model declared in `fields_read`, in that
+     * order, indexed by body index (end1[k] / end2[k]) */
+    const double* const* body_fields;
+
+    /* in/out: history rows, history_stride doubles per contact */
+    double* history;
+
+    /* outputs, one entry per contact (the host zeroes them first) */
+    double* force;        /* 3*count, on end 2, N */
+    double* moment1;      /* 3*count, pure moment on end 1 (beyond r x F), N m */
+    double* moment2;      /* 3*count, pure moment on end 2, N m */
+    double* strain_energy;   /* stored elastic energy, J (a state, not an increment) */
+    double* slip_energy;     /* energy dissipated by friction this step, J */
+    double* dashpot_energy;  /* energy dissipated by dashpots this step, J */
+    /* stable timestep, PFC style: per body dt = sqrt(m / sum k_t) and
+     * sqrt(I / sum k_r) over its contacts. The host adds the arm term
+     * k_t |r_c|^2 to k_r itself, so a model reports only pure rotational
+     * stiffness (e.g. a bond's bending stiffness). */
+    double* stiffness_translational; /* N/m */
+    double* stiffness_rotational;    /* N m/rad */
+    double* dt_limit;        /* s: a direct step limit (e.g. SPH CFL), +inf if none */
+    /* accumulations into fields declared in `fields_accumulated`:
+     * accumulate1[f][k] adds to body end1[k], accumulate2[f][k] to end2[k] */
+    double* const* accumulate1;
+    double* const* accumulate2;
+} plab_contact_batch;
+
+typedef struct plab_contact_model_desc {
+    const char* name; /* as named in scenes, e.g. "linear" */
+    const char* doc;
+    uint32_t property_count;
+    const plab_property_desc* properties;
+    uint32_t history_count;
+    const plab_history_desc* history;
+    uint32_t range_kind;                     /* PLAB_RANGE_GAP / DISTANCE */
+    const char* timestep_rule;               /* human text for `plab plugins --describe` */
+    /* activity range from the instance's property values (same order as
+     * `properties`); must be finite */
+    double (*activity_range)(const double* props);
+    uint32_t fields_read_count;
+    const plab_field_desc* fields_read;
+    uint32_t fields_accumulated_count;
+    const plab_field_desc* fields_accumulated;
+    /* instance life cycle; create may return NULL when no state is needed */
+    void* (*create)(const double* props);
+    void (*destroy)(void* instance);
+    /* force-displacement over one batch; returns 0 on success */
+    int (*compute)(void* instance, const double* props, const plab_contact_batch* batch);
+} plab_contact_model_desc;
+
+/* ---- passes over bodies --------------------------------------------------- */
+
+#define PLAB_PHASE_PRE_FORCE 0u  /* after detection, before force-displacement */
+#define PLAB_PHASE_POST_FORCE 1u /* after forces are summed onto bodies */
+#define PLAB_PHASE_INTEGRATE 2u  /* after the law of motion, integrate own fields */
+
+typedef struct plab_pass_view {
+    uint32_t dim;
+    uint32_t body_count;
+    double dt;
+    double time;
+    const double* position;  /* 3*body_count */
+    const double* velocity;  /* 3*body_count */
+    const double* force;     /* 3*body_count, contact + applied, N */
+    const double* radius;
+    const double* mass;
+    const int32_t* group;    /* group index per body */
+    /* fields the pass declared (`fields`), in that order, writable */
+    double* const* fields;
+    /* active contacts of every model after the latest force-displacement:
+     * body index pairs; contact_end2_is_wall[k] != 0 for ball–wall */
+    uint32_t contact_count;
+    const int32_t* contact_end1;
+    const int32_t* contact_end2;
+    const uint8_t* contact_end2_is_wall;
+} plab_pass_view;
+
+typedef struct plab_pass_desc {
+    const char* name;
+    const char* doc;
+    uint32_t phase;
+    uint32_t stage;          /* order within the phase (lower first) */
+    uint32_t property_count;
+    const plab_property_desc* properties;
+    uint32_t field_count;    /* per-body fields this pass owns or uses */
+    const plab_field_desc* fields;
+    void* (*create)(const double* props);
+    void (*destroy)(void* state);
+    int (*run)(void* state, const double* props, const plab_pass_view* view);
+} plab_pass_desc;
+
+/* ---- registration ------------------------------------------------------- */
+
+/* The host hands a registrar to plab_plugin_init. The descriptions passed in
+ * must stay valid while the library is loaded (static storage). Each call
+ * returns 0 when accepted. */
+typedef struct plab_registrar {
+    void* host;
+    int (*register_contact_model)(void* host, const plab_contact_model_desc* desc);
+    int (*register_pass)(void* host, const plab_pass_desc* desc);
+} plab_registrar;
+
+typedef uint32_t (*plab_plugin_abi_version_fn)(void);
+typedef int (*plab_plugin_init_fn)(const plab_registrar* registrar);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PLAB_ABI_H */

@@ -1,0 +1,187 @@
+// C++ adapter over the plug-in ABI (abi.h): a model author writes a class
+// with the law for ONE contact; this header generates the C description
+// table and the batch loop, so the law is inlined into the loop and nothing
+// but C crosses the library boundary.
+//
+//   struct MyModel {
+//       static constexpr const char* name = "my_model";
+//       static constexpr const char* doc = "...";
+//       static constexpr const char* timestep_rule = "...";
+//       static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+//       static constexpr plab_property_desc properties[] = {...};
+//       enum Slot : int { ..., slot_count };            // history slots
+//       static constexpr plab_history_desc history[] = {...};  // slot_count entries
+//       static double activity_range(const double* props);
+//       explicit MyModel(const double* props);
+//       void law(plab::Contact& c) const;
+//   };
+//   PLAB_PLUGIN(plab::add_contact_model<MyModel>(r))
+//
+// Optional members: `fields_read[]`, `fields_accumulated[]`
+// (plab_field_desc arrays) to read body fields / accumulate into them.
+#ifndef PLAB_CONTACT_MODEL_HPP
+#define PLAB_CONTACT_MODEL_HPP
+
+#include <plab/abi.h>
+#include <plab/vec3.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+
+#if defined(_WIN32)
+#define PLAB_EXPORT __declspec(dllexport)
+#else
+#define PLAB_EXPORT __attribute__((visibility("default")))
+#endif
+
+namespace plab {
+
+// One contact of a batch: typed access to the host's columns at index k.
+class Contact {
+public:
+    Contact(const plab_contact_batch& b, uint32_t k) : b_(b), k_(k) {}
+
+    int dim() const { return static_cast<int>(b_.dim); }
+    double dt() const { return b_.dt; }
+    bool with_wall() const { return b_.end2_is_wall != 0; }
+    int32_t end1() const { return b_.end1[k_]; }
+    int32_t end2() const { return b_.end2[k_]; }
+
+    Vec3 normal() const { return load(b_.normal); }
+    double gap() const { return b_.gap[k_]; }
+    double overlap() const { return -b_.gap[k_]; }
+    double distance() const { return b_.distance[k_]; }
+    Vec3 rel_velocity() const { return load(b_.rel_velocity); }
+    Vec3 rel_angular_velocity() const { return load(b_.rel_angular_velocity); }
+    double radius1() const { return b_.radius1[k_]; }
+    double radius2() const { return b_.radius2[k_]; }
+    double mass1() const { return b_.mass1[k_]; }
+    double mass2() const { return b_.mass2[k_]; }
+    double eff_mass() const { return b_.eff_mass[k_]; }
+    double eff_radius() const { return b_.eff_radius[k_]; }
+
+    double& history(int slot) const { return b_.history[std::size_t(k_) * b_.history_stride + slot]; }
+    Vec3 history_vec(int first_slot) const {
+        return {history(first_slot), history(first_slot + 1), history(first_slot + 2)};
+    }
+    void set_history_vec(int first_slot, const Vec3& v) const {
+        history(first_slot) = v.x; history(first_slot + 1) = v.y; history(first_slot + 2) = v.z;
+    }
+
+    // body fields declared in `fields_read`, by position in that list
+    double field1(int f) const { return b_.body_fields[f][b_.end1[k_]]; }
+    double field2(int f) const { return b_.body_fields[f][b_.end2[k_]]; }
+    void accumulate1(int f, double v) const { b_.accumulate1[f][k_] += v; }
+    void accumulate2(int f, double v) const { b_.accumulate2[f][k_] += v; }
+
+    // force acting on end 2 (end 1 receives the opposite), N
+    void set_force(const Vec3& f) const { store(b_.force, f); }
+    void set_moment1(const Vec3& m) const { store(b_.moment1, m); }
+    void set_moment2(const Vec3& m) const { store(b_.moment2, m); }
+    void set_strain_energy(double e) const { b_.strain_energy[k_] = e; }
+    void add_slip_energy(double e) const { b_.slip_energy[k_] += e; }
+    void add_dashpot_energy(double e) const { b_.dashpot_energy[k_] += e; }
+    // stiffness seen by the host's stable-timestep estimate sqrt(m / sum k)
+    void set_stiffness(double translational, double rotational = 0.0) const {
+        b_.stiffness_translational[k_] = translational;
+        b_.stiffness_rotational[k_] = rotational;
+    }
+    void set_dt_limit(double dt) const { b_.dt_limit[k_] = dt; }
+
+private:
+    Vec3 load(const double* col) const { return {col[3 * k_], col[3 * k_ + 1], col[3 * k_ + 2]}; }
+    void store(double* col, const Vec3& v) const {
+        col[3 * k_] = v.x; col[3 * k_ + 1] = v.y; col[3 * k_ + 2] = v.z;
+    }
+    const plab_contact_batch& b_;
+    uint32_t k_;
+};
+
+namespace detail {
+
+template <class M, class = void> struct has_fields_read : std::false_type {};
+template <class M> struct has_fields_read<M, std::void_t<decltype(M::fields_read)>> : std::true_type {};
+template <class M, class = void> struct has_fields_acc : std::false_type {};
+template <class M> struct has_fields_acc<M, std::void_t<decltype(M::fields_accumulated)>> : std::true_type {};
+template <class M, class = void> struct has_history : std::false_type {};
+template <class M> struct has_history<M, std::void_t<decltype(M::history)>> : std::true_type {};
+
+template <class T, std::size_t N> constexpr uint32_t count_of(const T (&)[N]) { return uint32_t(N); }
+
+template <class M> void* create(const double* props) noexcept {
+    try { return new M(props); } catch (...) { return nullptr; }
+}
+template <class M> void destroy(void* p) noexcept { delete static_cast<M*>(p); }
+
+// The batch loop: inactive contacts get their history reset to the declared
+// defaults (a separated contact is forgotten); active ones run the law.
+template <class M> int compute(void* inst, const double*, const plab_contact_batch* b) noexcept {
+    if (!inst) return 1;
+    const M& model = *static_cast<const M*>(inst);
+    try {
+        for (uint32_t k = 0; k < b->count; ++k) {
+            if (!b->active[k]) {
+                if constexpr (has_history<M>::value) {
+                    double* row = b->history + std::size_t(k) * b->history_stride;
+                    for (uint32_t s = 0; s < count_of(M::history); ++s) row[s] = M::history[s].default_value;
+                }
+                continue;
+            }
+            Contact c(*b, k);
+            model.law(c);
+        }
+    } catch (...) {
+        return 2;
+    }
+    return 0;
+}
+
+} // namespace detail
+
+// The C description of model M (static storage: valid while the library is loaded).
+template <class M> const plab_contact_model_desc* contact_model_desc() {
+    static const plab_contact_model_desc d = [] {
+        plab_contact_model_desc x{};
+        x.name = M::name;
+        x.doc = M::doc;
+        x.property_count = detail::count_of(M::properties);
+        x.properties = M::properties;
+        if constexpr (detail::has_history<M>::value) {
+            x.history_count = detail::count_of(M::history);
+            x.history = M::history;
+        }
+        x.range_kind = M::range_kind;
+        x.timestep_rule = M::timestep_rule;
+        x.activity_range = &M::activity_range;
+        if constexpr (detail::has_fields_read<M>::value) {
+            x.fields_read_count = detail::count_of(M::fields_read);
+            x.fields_read = M::fields_read;
+        }
+        if constexpr (detail::has_fields_acc<M>::value) {
+            x.fields_accumulated_count = detail::count_of(M::fields_accumulated);
+            x.fields_accumulated = M::fields_accumulated;
+        }
+        x.create = &detail::create<M>;
+        x.destroy = &detail::destroy<M>;
+        x.compute = &detail::compute<M>;
+        return x;
+    }();
+    return &d;
+}
+
+template <class M> int add_contact_model(const plab_registrar* r) {
+    return r->register_contact_model(r->host, contact_model_desc<M>());
+}
+
+} // namespace plab
+
+// Defines the two exported entry points of a plug-in library. `body` is an
+// expression over the registrar `r` that returns 0 on success, e.g.
+//   PLAB_PLUGIN(plab::add_contact_model<Linear>(r))
+#define PLAB_PLUGIN(body)                                                         \
+    extern "C" PLAB_EXPORT uint32_t plab_plugin_abi_version(void) { return PLAB_ABI_VERSION; } \
+    extern "C" PLAB_EXPORT int plab_plugin_init(const plab_registrar* r) { return (body); }
+
+#endif // PLAB_CONTACT_MODEL_HPP

@@ -1,0 +1,58 @@
+// C++ adapter for passes: plug-in work over bodies in a cycle phase (PySPH's
+// equation groups; SPHinXsys' local dynamics). A pass class declares its
+// phase, stage, properties and per-body fields, and `run(View&)`.
+//
+//   struct MyPass {
+//       static constexpr const char* name = "my_pass";
+//       static constexpr const char* doc = "...";
+//       static constexpr uint32_t phase = PLAB_PHASE_POST_FORCE, stage = 0;
+//       static constexpr plab_property_desc properties[] = {...};  // may be empty via `properties_none`
+//       static constexpr plab_field_desc fields[] = {...};
+//       explicit MyPass(const double* props);
+//       void run(const plab_pass_view& v);
+//   };
+//   PLAB_PLUGIN(plab::add_pass<MyPass>(r))
+#ifndef PLAB_PASS_HPP
+#define PLAB_PASS_HPP
+
+#include <plab/contact_model.hpp>
+
+namespace plab {
+
+namespace detail {
+template <class P, class = void> struct has_properties : std::false_type {};
+template <class P> struct has_properties<P, std::void_t<decltype(P::properties)>> : std::true_type {};
+
+template <class P> int run_pass(void* state, const double*, const plab_pass_view* v) noexcept {
+    if (!state) return 1;
+    try { static_cast<P*>(state)->run(*v); } catch (...) { return 2; }
+    return 0;
+}
+} // namespace detail
+
+template <class P> const plab_pass_desc* pass_desc() {
+    static const plab_pass_desc d = [] {
+        plab_pass_desc x{};
+        x.name = P::name;
+        x.doc = P::doc;
+        x.phase = P::phase;
+        x.stage = P::stage;
+        if constexpr (detail::has_properties<P>::value) {
+            x.property_count = detail::count_of(P::properties);
+            x.properties = P::properties;
+        }
+        x.field_count = detail::count_of(P::fields);
+        x.fields = P::fields;
+        x.create = &detail::create<P>;
+        x.destroy = &detail::destroy<P>;
+        x.run = &detail::run_pass<P>;
+        return x;
+    }();
+    return &d;
+}
+
+template <class P> int add_pass(const plab_registrar* r) { return r->register_pass(r->host, pass_desc<P>()); }
+
+} // namespace plab
+
+#endif // PLAB_PASS_HPP

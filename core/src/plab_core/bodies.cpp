@@ -1,0 +1,37 @@
+#include "bodies.hpp"
+
+#include <cmath>
+
+namespace plab {
+
+double Bodies::mass_of(int dim, double r, double rho) {
+    return dim == 2 ? rho * M_PI * r * r : rho * 4.0 / 3.0 * M_PI * r * r * r;
+}
+
+double Bodies::inertia_of(int dim, double r, double m) {
+    return dim == 2 ? 0.5 * m * r * r : 0.4 * m * r * r;
+}
+
+BodyId Bodies::add(const BallSpec& s) {
+    const BodyId new_id = next_id++;
+    id.push_back(new_id);
+    Vec p = s.position, v = s.velocity, w = s.angular_velocity;
+    if (dim == 2) { p.z() = 0; v.z() = 0; w.x() = 0; w.y() = 0; }
+    position.push_back(p);
+    velocity.push_back(v);
+    angular_velocity.push_back(w);
+    force.push_back(Vec::Zero());
+    moment.push_back(Vec::Zero());
+    applied_force.push_back(Vec::Zero());
+    applied_moment.push_back(Vec::Zero());
+    radius.push_back(s.radius);
+    const double m = mass_of(dim, s.radius, s.density);
+    mass.push_back(m);
+    inertia.push_back(inertia_of(dim, s.radius, m));
+    local_damping.push_back(s.local_damping);
+    group.push_back(s.group);
+    fixity.push_back(s.fixity | implicit_fixity());
+    return new_id;
+}
+
+} // namespace plab

@@ -1,0 +1,47 @@
+// Balls (2D discs of unit thickness, 3D spheres) as structure-of-arrays.
+// A body's index may change; its id never does (contacts are keyed by id).
+#pragma once
+
+#include "types.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace plab {
+
+struct BallSpec {
+    Vec position = Vec::Zero();
+    Vec velocity = Vec::Zero();
+    Vec angular_velocity = Vec::Zero();
+    double radius = 0;
+    double density = 0;
+    int group = 0;
+    std::uint8_t fixity = 0;
+    double local_damping = 0;
+};
+
+struct Bodies {
+    int dim = 3;
+    std::vector<BodyId> id;
+    std::vector<Vec> position, velocity, angular_velocity;
+    std::vector<Vec> force, moment;                  // total, after the force pass
+    std::vector<Vec> applied_force, applied_moment;  // user loads
+    std::vector<double> radius, mass, inertia, local_damping;
+    std::vector<int> group;
+    std::vector<std::uint8_t> fixity;
+    BodyId next_id = 0;
+
+    std::size_t size() const { return id.size(); }
+
+    // Mass and moment of inertia from radius and density (thesis §3.1.2):
+    // disc of unit thickness I = m R²/2, sphere I = 2 m R²/5.
+    static double mass_of(int dim, double radius, double density);
+    static double inertia_of(int dim, double radius, double mass);
+
+    BodyId add(const BallSpec& s);
+    // DOFs that can never move in this dimension (2D: z, rx, ry).
+    std::uint8_t implicit_fixity() const { return dim == 2 ? (dof_z | dof_rx | dof_ry) : 0; }
+};
+
+} // namespace plab

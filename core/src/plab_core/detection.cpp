@@ -1,0 +1,215 @@
+// Contact detection: a cell linked list builds Verlet lists of candidate
+// pairs within (activity range + skin); the lists are rebuilt when a body has
+// moved half a skin. Candidates are kept per model instance, sorted by the ids
+// of their ends, and history is carried from the old list by that key.
+#include "world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace plab {
+
+void ContactSet::resize_columns(std::size_t n, int n_acc) {
+    active.assign(n, 0);
+    interior.assign(with_wall ? n : 0, 1);
+    for (auto* v : {&normal, &rel_velocity, &rel_angular_velocity, &point, &force, &moment1, &moment2})
+        v->assign(3 * n, 0.0);
+    for (auto* v : {&gap, &distance, &radius1, &radius2, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip,
+                    &dashpot, &k_t, &k_r, &dt_limit})
+        v->assign(n, 0.0);
+    acc1.assign(n_acc, std::vector<double>(n, 0.0));
+    acc2.assign(n_acc, std::vector<double>(n, 0.0));
+}
+
+namespace {
+
+// Candidate cut-off between two bodies for an instance, centre to centre.
+double cutoff(const ModelInstance& inst, double r1, double r2, double skin) {
+    if (inst.desc->range_kind == PLAB_RANGE_DISTANCE) return inst.range + skin;
+    return r1 + r2 + std::max(inst.range, 0.0) + skin;
+}
+
+} // namespace
+
+bool World::displacement_exceeds_skin() const {
+    const double s = effective_skin();
+    double max2 = 0;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        max2 = std::max(max2, (bodies.position[i] - position_at_build_[i]).squaredNorm());
+    const double max_disp = std::sqrt(max2);
+    // two bodies closing on each other, or a body and a moving wall
+    return 2.0 * max_disp > s || max_disp + wall_motion_since_build_ > s;
+}
+
+void World::build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const {
+    const std::size_t n = bodies.size();
+    if (n < 2 || instances_.empty()) return;
+    const double s = effective_skin();
+    double r_max = 0;
+    for (double r : bodies.radius) r_max = std::max(r_max, r);
+    double cell = 0;
+    for (const auto& inst : instances_) cell = std::max(cell, cutoff(*inst, r_max, r_max, s));
+    if (cell <= 0) return;
+
+    Vec lo = bodies.position[0], hi = lo;
+    for (const Vec& p : bodies.position) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
+    std::array<long, 3> dims{1, 1, 1};
+    // coarsen the grid if it would have far more cells than bodies
+    for (;;) {
+        long total = 1;
+        for (int c = 0; c < dim; ++c) {
+            dims[c] = std::max(1L, long((hi[c] - lo[c]) / cell) + 1);
+            total *= dims[c];
+        }
+        if (total <= long(8 * n + 64)) break;
+        cell *= 1.5;
+    }
+    auto cell_of = [&](const Vec& p, int c) { return std::min(dims[c] - 1, long((p[c] - lo[c]) / cell)); };
+    auto flat = [&](long x, long y, long z) { return (z * dims[1] + y) * dims[0] + x; };
+    const long n_cells = dims[0] * dims[1] * dims[2];
+    std::vector<std::int32_t> start(n_cells + 1, 0), items(n), home(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec& p = bodies.position[i];
+        home[i] = std::int32_t(flat(cell_of(p, 0), cell_of(p, 1), dim == 3 ? cell_of(p, 2) : 0));
+        ++start[home[i] + 1];
+    }
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    {
+        std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
+        for (std::size_t i = 0; i < n; ++i) items[fill[home[i]]++] = std::int32_t(i);
+    }
+    const int ng = int(groups_.size());
+    const long zr = dim == 3 ? 1 : 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec& pi = bodies.position[i];
+        const long cx = cell_of(pi, 0), cy = cell_of(pi, 1), cz = dim == 3 ? cell_of(pi, 2) : 0;
+        for (long z = std::max(0L, cz - zr); z <= std::min(dims[2] - 1, cz + zr); ++z)
+            for (long y = std::max(0L, cy - 1); y <= std::min(dims[1] - 1, cy + 1); ++y)
+                for (long x = std::max(0L, cx - 1); x <= std::min(dims[0] - 1, cx + 1); ++x) {
+                    const long c = flat(x, y, z);
+                    for (std::int32_t t = start[c]; t < start[c + 1]; ++t) {
+                        const std::int32_t j = items[t];
+                        if (std::size_t(j) <= i) continue;
+                        const int inst = cmat_[bodies.group[i] * ng + bodies.group[j]];
+                        if (inst < 0) continue;
+                        const double cut = cutoff(*instances_[inst], bodies.radius[i], bodies.radius[j], s);
+                        if ((bodies.position[j] - pi).squaredNorm() <= cut * cut)
+                            out[inst].push_back({std::int32_t(i), j});
+                    }
+                }
+    }
+}
+
+void World::build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const {
+    if (walls.facets.empty() || instances_.empty()) return;
+    const double s = effective_skin();
+    const int ng = int(groups_.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Vec& p = bodies.position[i];
+        for (std::size_t f = 0; f < walls.facets.size(); ++f) {
+            const Facet& facet = walls.facets[f];
+            const int inst = cmat_[bodies.group[i] * ng + walls.walls[facet.wall].group];
+            if (inst < 0) continue;
+            double dist;
+            if (facet.kind == FacetKind::plane) dist = (p - facet.a).dot(facet.b);  // signed: behind is inside
+            else dist = (closest_point(facet, p).point - p).norm();
+            if (dist <= cutoff(*instances_[inst], bodies.radius[i], 0.0, s)) out[inst].push_back({std::int32_t(i), std::int32_t(f)});
+        }
+    }
+}
+
+// Replace a set's rows by new candidate pairs, carrying history by key.
+void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) {
+    const std::size_t n = pairs.size();
+    std::vector<BodyId> k1(n), k2(n);
+    for (std::size_t r = 0; r < n; ++r) {
+        auto& pr = pairs[r];
+        if (set.with_wall) {
+            k1[r] = bodies.id[pr[0]];
+            k2[r] = walls.facets[pr[1]].id;
+        } else {
+            if (bodies.id[pr[0]] > bodies.id[pr[1]]) std::swap(pr[0], pr[1]);  // end 1 has the lower id
+            k1[r] = bodies.id[pr[0]];
+            k2[r] = bodies.id[pr[1]];
+        }
+    }
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return k1[a] != k1[b] ? k1[a] < k1[b] : k2[a] < k2[b];
+    });
+    const int stride = inst.stride;
+    std::vector<double> history(n * stride);
+    std::vector<std::int32_t> e1(n), e2(n);
+    std::vector<BodyId> nk1(n), nk2(n);
+    std::size_t old = 0;
+    for (std::size_t r = 0; r < n; ++r) {
+        const std::size_t src = order[r];
+        e1[r] = pairs[src][0];
+        e2[r] = pairs[src][1];
+        nk1[r] = k1[src];
+        nk2[r] = k2[src];
+        while (old < set.size() && (set.key1[old] < nk1[r] || (set.key1[old] == nk1[r] && set.key2[old] < nk2[r])))
+            ++old;
+        double* row = history.data() + r * stride;
+        if (old < set.size() && set.key1[old] == nk1[r] && set.key2[old] == nk2[r])
+            std::copy_n(set.history.data() + old * stride, stride, row);  // survivor keeps its history
+        else
+            for (int h = 0; h < stride; ++h) row[h] = inst.desc->history[h].default_value;
+    }
+    set.end1 = std::move(e1);
+    set.end2 = std::move(e2);
+    set.key1 = std::move(nk1);
+    set.key2 = std::move(nk2);
+    set.history = std::move(history);
+    set.resize_columns(n, int(inst.fields_accumulated.size()));
+}
+
+void World::rebuild() {
+    std::vector<std::vector<std::array<std::int32_t, 2>>> ball_pairs(instances_.size()), wall_pairs(instances_.size());
+    build_ball_pairs(ball_pairs);
+    build_wall_pairs(wall_pairs);
+    for (std::size_t m = 0; m < instances_.size(); ++m) {
+        install_pairs(*instances_[m], instances_[m]->balls, ball_pairs[m]);
+        install_pairs(*instances_[m], instances_[m]->walls, wall_pairs[m]);
+    }
+    position_at_build_ = bodies.position;
+    wall_motion_since_build_ = 0;
+    need_rebuild_ = false;
+    ++rebuilds;
+    build_entries();
+}
+
+// Per-body lists of the contact rows touching each body, in (set, row)
+// order: the reduction walks them, so sums do not depend on threads.
+void World::build_entries() {
+    sets_.clear();
+    set_owner_.clear();
+    for (auto& inst : instances_) {
+        sets_.push_back(&inst->balls);
+        set_owner_.push_back(inst.get());
+        sets_.push_back(&inst->walls);
+        set_owner_.push_back(inst.get());
+    }
+    const std::size_t n = bodies.size();
+    entry_start_.assign(n + 1, 0);
+    for (const ContactSet* s : sets_)
+        for (std::size_t k = 0; k < s->size(); ++k) {
+            ++entry_start_[s->end1[k] + 1];
+            if (!s->with_wall) ++entry_start_[s->end2[k] + 1];
+        }
+    std::partial_sum(entry_start_.begin(), entry_start_.end(), entry_start_.begin());
+    entries_.resize(entry_start_[n]);
+    std::vector<std::uint32_t> fill(entry_start_.begin(), entry_start_.end() - 1);
+    constexpr std::uint32_t end2_bit = 1u << 31;
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
+        const ContactSet* s = sets_[si];
+        for (std::uint32_t k = 0; k < s->size(); ++k) {
+            entries_[fill[s->end1[k]]++] = {si, k};
+            if (!s->with_wall) entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
+        }
+    }
+}
+
+} // namespace plab

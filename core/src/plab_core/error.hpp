@@ -1,0 +1,34 @@
+// Errors the user sees. Every input error names the JSON path, the value and
+// the valid range; every run error names the quantity, the body/contact, the
+// step and a likely cause.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace plab {
+
+// Bad input (scene, command line, plug-in library): the message is complete.
+class InputError : public std::runtime_error {
+public:
+    InputError(std::string path, const std::string& message)
+        : std::runtime_error(path.empty() ? message : path + ": " + message), path_(std::move(path)) {}
+    const std::string& path() const { return path_; }
+
+private:
+    std::string path_;
+};
+
+// A plug-in library refused by the host (wrong ABI, missing symbol, ...).
+class PluginError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// A run stopped by the stability detector; the world keeps its last good state.
+class RunError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+} // namespace plab

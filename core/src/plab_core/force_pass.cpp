@@ -1,0 +1,267 @@
+// Force–displacement: the host computes each candidate contact's geometry
+// once (normal, gap, contact point, relative velocity), calls each model once
+// per batch of contacts, then sums forces onto bodies in a fixed order.
+#include "world.hpp"
+
+#include "error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace plab {
+
+namespace {
+constexpr std::size_t kBatch = 512;
+
+inline void put(std::vector<double>& col, std::size_t k, const Vec& v) {
+    col[3 * k] = v.x(); col[3 * k + 1] = v.y(); col[3 * k + 2] = v.z();
+}
+} // namespace
+
+void World::geometry(ModelInstance& inst, ContactSet& s) {
+    const std::size_t n = s.size();
+    const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
+    const auto& B = bodies;
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::int32_t i = s.end1[k];
+        const Vec& xi = B.position[i];
+        const double ri = B.radius[i];
+        Vec normal, point, v_other, w_other;
+        double dist, rj, mj;
+        if (s.with_wall) {
+            const Facet& f = walls.facets[s.end2[k]];
+            if (f.kind == FacetKind::plane) {
+                dist = (xi - f.a).dot(f.b);  // signed: a ball behind the plane is pushed back
+                normal = -f.b;
+                s.interior[k] = 1;
+            } else {
+                const ClosestPoint cp = closest_point(f, xi);
+                const Vec d = cp.point - xi;
+                dist = d.norm();
+                normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
+                s.interior[k] = cp.interior;
+            }
+            rj = 0;
+            mj = kInf;
+            point = xi + normal * (ri + 0.5 * (dist - ri));
+            v_other = walls.velocity_at(f.wall, point);
+            w_other = walls.walls[f.wall].angular_velocity;
+        } else {
+            const std::int32_t j = s.end2[k];
+            const Vec d = B.position[j] - xi;
+            dist = d.norm();
+            normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
+            rj = B.radius[j];
+            mj = B.mass[j];
+            const double gap = dist - ri - rj;
+            point = xi + normal * (ri + 0.5 * gap);  // middle of the overlap
+            v_other = B.velocity[j] + B.angular_velocity[j].cross(point - B.position[j]);
+            w_other = B.angular_velocity[j];
+        }
+        const double gap = dist - ri - rj;
+        const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
+        put(s.normal, k, normal);
+        put(s.point, k, point);
+        put(s.rel_velocity, k, v_other - vi);
+        put(s.rel_angular_velocity, k, w_other - B.angular_velocity[i]);
+        s.gap[k] = gap;
+        s.distance[k] = dist;
+        s.radius1[k] = ri;
+        s.radius2[k] = rj;
+        s.mass1[k] = B.mass[i];
+        s.mass2[k] = mj;
+        s.eff_mass[k] = std::isinf(mj) ? B.mass[i] : B.mass[i] * mj / (B.mass[i] + mj);
+        s.eff_radius[k] = rj > 0 ? ri * rj / (ri + rj) : ri;
+        s.active[k] = by_distance ? dist <= inst.range : gap <= inst.range;
+    }
+}
+
+// A ball touching a wall along several facets. An edge/vertex contact is
+// redundant when its surface point also lies on another facet of the same
+// wall that is at least as close (ties: the lower row wins): flat
+// neighbours then push once, a convex edge pushes once, and a concave corner
+// (two interior contacts) pushes from both faces.
+void World::resolve_wall_features(ContactSet& s) {
+    const std::size_t n = s.size();
+    for (std::size_t a = 0; a < n;) {
+        std::size_t b = a;
+        while (b < n && s.end1[b] == s.end1[a]) ++b;  // rows of one ball are adjacent (sorted by id)
+        for (std::size_t k = a; b - a > 1 && k < b; ++k) {
+            if (!s.active[k] || s.interior[k]) continue;
+            const Facet& fk = walls.facets[s.end2[k]];
+            const Vec xi = bodies.position[s.end1[k]];
+            const Vec surface = xi + Vec(&s.normal[3 * k]) * s.distance[k];
+            const double eps = 1e-9 * (1.0 + s.radius1[k]);
+            for (std::size_t o = a; o < b; ++o) {
+                if (o == k || !s.active[o] || walls.facets[s.end2[o]].wall != fk.wall) continue;
+                const bool closer = s.distance[o] < s.distance[k] - eps ||
+                                    (std::fabs(s.distance[o] - s.distance[k]) <= eps && (s.interior[o] || o < k));
+                if (closer && (closest_point(walls.facets[s.end2[o]], surface).point - surface).norm() <= eps) {
+                    s.active[k] = 0;
+                    break;
+                }
+            }
+        }
+        a = b;
+    }
+}
+
+void World::compute(ModelInstance& inst, ContactSet& s) {
+    const std::size_t n = s.size();
+    if (n == 0) return;
+    std::fill(s.force.begin(), s.force.end(), 0.0);
+    std::fill(s.moment1.begin(), s.moment1.end(), 0.0);
+    std::fill(s.moment2.begin(), s.moment2.end(), 0.0);
+    for (auto* v : {&s.strain, &s.slip, &s.dashpot, &s.k_t, &s.k_r}) std::fill(v->begin(), v->end(), 0.0);
+    std::fill(s.dt_limit.begin(), s.dt_limit.end(), kInf);
+    for (auto& a : s.acc1) std::fill(a.begin(), a.end(), 0.0);
+    for (auto& a : s.acc2) std::fill(a.begin(), a.end(), 0.0);
+
+    std::vector<const double*> read_cols;
+    for (int f : inst.fields_read) read_cols.push_back(fields_[f].data());
+    const std::size_t n_batches = (n + kBatch - 1) / kBatch;
+    int failed = 0;
+#pragma omp parallel for schedule(dynamic) reduction(| : failed)
+    for (std::size_t b = 0; b < n_batches; ++b) {
+        const std::size_t o = b * kBatch;
+        std::vector<double*> a1, a2;
+        for (std::size_t f = 0; f < s.acc1.size(); ++f) {
+            a1.push_back(s.acc1[f].data() + o);
+            a2.push_back(s.acc2[f].data() + o);
+        }
+        plab_contact_batch batch{};
+        batch.dim = uint32_t(dim);
+        batch.count = uint32_t(std::min(kBatch, n - o));
+        batch.end2_is_wall = s.with_wall;
+        batch.history_stride = uint32_t(inst.stride);
+        batch.dt = last_dt;
+        batch.end1 = s.end1.data() + o;
+        batch.end2 = s.end2.data() + o;
+        batch.active = s.active.data() + o;
+        batch.normal = s.normal.data() + 3 * o;
+        batch.gap = s.gap.data() + o;
+        batch.distance = s.distance.data() + o;
+        batch.rel_velocity = s.rel_velocity.data() + 3 * o;
+        batch.rel_angular_velocity = s.rel_angular_velocity.data() + 3 * o;
+        batch.radius1 = s.radius1.data() + o;
+        batch.radius2 = s.radius2.data() + o;
+        batch.mass1 = s.mass1.data() + o;
+        batch.mass2 = s.mass2.data() + o;
+        batch.eff_mass = s.eff_mass.data() + o;
+        batch.eff_radius = s.eff_radius.data() + o;
+        batch.body_fields = read_cols.data();
+        batch.history = s.history.data() + o * inst.stride;
+        batch.force = s.force.data() + 3 * o;
+        batch.moment1 = s.moment1.data() + 3 * o;
+        batch.moment2 = s.moment2.data() + 3 * o;
+        batch.strain_energy = s.strain.data() + o;
+        batch.slip_energy = s.slip.data() + o;
+        batch.dashpot_energy = s.dashpot.data() + o;
+        batch.stiffness_translational = s.k_t.data() + o;
+        batch.stiffness_rotational = s.k_r.data() + o;
+        batch.dt_limit = s.dt_limit.data() + o;
+        batch.accumulate1 = a1.data();
+        batch.accumulate2 = a2.data();
+        if (inst.desc->compute(inst.state, inst.props.data(), &batch) != 0) failed = 1;
+    }
+    if (failed)
+        throw RunError("contact model '" + inst.model + "' reported a failure in compute() at step " +
+                       std::to_string(step_count));
+}
+
+// Sum contact forces and moments onto bodies (plus gravity, applied loads and
+// local damping), each body walking its own contact rows in a fixed order.
+void World::reduce() {
+    const std::size_t n = bodies.size();
+    constexpr std::uint32_t end2_bit = 1u << 31;
+    for (auto& inst : instances_)
+        for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
+    double local_work = 0;
+#pragma omp parallel for schedule(static) reduction(+ : local_work)
+    for (std::size_t i = 0; i < n; ++i) {
+        Vec f = bodies.mass[i] * gravity + bodies.applied_force[i];
+        Vec m = bodies.applied_moment[i];
+        double kt = 0, kr = 0;
+        const Vec& xi = bodies.position[i];
+        for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
+            const Entry en = entries_[e];
+            const ContactSet& s = *sets_[en.set];
+            const std::uint32_t k = en.row & ~end2_bit;
+            if (!s.active[k]) continue;
+            const bool is_end2 = en.row & end2_bit;
+            const Vec fc = is_end2 ? Vec(&s.force[3 * k]) : Vec(-Vec(&s.force[3 * k]));
+            const Vec arm = Vec(&s.point[3 * k]) - xi;
+            f += fc;
+            m += arm.cross(fc) + Vec(is_end2 ? &s.moment2[3 * k] : &s.moment1[3 * k]);
+            kt += s.k_t[k];
+            kr += s.k_r[k] + s.k_t[k] * arm.squaredNorm();
+            const ModelInstance& owner = *set_owner_[en.set];
+            for (std::size_t a = 0; a < owner.fields_accumulated.size(); ++a)
+                fields_[owner.fields_accumulated[a]][i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
+        }
+        const double alpha = bodies.local_damping[i];
+        if (alpha > 0) {  // PFC local damping: -alpha |F| sign(v), per component
+            for (int c = 0; c < 3; ++c) {
+                const double v = bodies.velocity[i][c], w = bodies.angular_velocity[i][c];
+                const double fd = -alpha * std::fabs(f[c]) * ((v > 0) - (v < 0));
+                const double md = -alpha * std::fabs(m[c]) * ((w > 0) - (w < 0));
+                f[c] += fd;
+                m[c] += md;
+                local_work -= (fd * v + md * w) * last_dt;
+            }
+        }
+        if (dim == 2) { f.z() = 0; m.x() = 0; m.y() = 0; }
+        bodies.force[i] = f;
+        bodies.moment[i] = m;
+        k_trans_[i] = kt;
+        k_rot_[i] = kr;
+    }
+    energies.local_damping += local_work;
+
+    for (Wall& w : walls.walls) { w.force.setZero(); w.moment.setZero(); }
+    for (auto& inst : instances_) {
+        const ContactSet& s = inst->walls;
+        for (std::size_t k = 0; k < s.size(); ++k) {
+            if (!s.active[k]) continue;
+            Wall& w = walls.walls[walls.facets[s.end2[k]].wall];
+            const Vec fc(&s.force[3 * k]);
+            w.force += fc;
+            w.moment += (Vec(&s.point[3 * k]) - w.centre).cross(fc) + Vec(&s.moment2[3 * k]);
+        }
+    }
+    if (!passes_.empty()) {  // active contact list for passes, only when one is loaded
+        pc_end1_.clear(); pc_end2_.clear(); pc_wall_.clear();
+        for (const ContactSet* s : sets_)
+            for (std::size_t k = 0; k < s->size(); ++k)
+                if (s->active[k]) {
+                    pc_end1_.push_back(s->end1[k]);
+                    pc_end2_.push_back(s->end2[k]);
+                    pc_wall_.push_back(s->with_wall);
+                }
+    }
+}
+
+StableStep World::stable_timestep() {
+    if (!nominal_valid_) { nominal_cache_ = nominal_timestep(); nominal_valid_ = true; }
+    StableStep best = nominal_cache_;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        if (k_trans_[i] > 0) {
+            const double dt = std::sqrt(bodies.mass[i] / k_trans_[i]);
+            if (dt < best.critical) best = {dt, "translation of ball id " + std::to_string(bodies.id[i]) + " (sqrt(m/sum k))"};
+        }
+        if (k_rot_[i] > 0) {
+            const double dt = std::sqrt(bodies.inertia[i] / k_rot_[i]);
+            if (dt < best.critical) best = {dt, "rotation of ball id " + std::to_string(bodies.id[i]) + " (sqrt(I/sum k_r))"};
+        }
+    }
+    for (auto& inst : instances_)
+        for (const ContactSet* s : {&inst->balls, &inst->walls})
+            for (std::size_t k = 0; k < s->size(); ++k)
+                if (s->active[k] && s->dt_limit[k] < best.critical)
+                    best = {s->dt_limit[k], "step limit of model " + inst->model};
+    return best;
+}
+
+} // namespace plab

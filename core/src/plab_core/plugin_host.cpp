@@ -1,0 +1,249 @@
+#include "plugin_host.hpp"
+
+#include "error.hpp"
+
+#include <boost/dll/shared_library.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#ifndef PLAB_PLUGIN_DIR
+#define PLAB_PLUGIN_DIR ""
+#endif
+
+namespace fs = std::filesystem;
+
+namespace plab {
+
+namespace {
+
+int cb_register_model(void* host, const plab_contact_model_desc* d) {
+    return static_cast<PluginHost*>(host)->register_model(d);
+}
+int cb_register_pass(void* host, const plab_pass_desc* d) {
+    return static_cast<PluginHost*>(host)->register_pass(d);
+}
+
+std::string fmt(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
+    std::string out;
+    for (const auto& s : v) out += (out.empty() ? "" : sep) + s;
+    return out;
+}
+
+} // namespace
+
+std::string range_text(const plab_property_desc& p) {
+    return std::string(p.flags & PLAB_MIN_EXCLUSIVE ? "(" : "[") + fmt(p.min_value) + ", " + fmt(p.max_value) +
+           (p.flags & PLAB_MAX_EXCLUSIVE ? ")" : "]");
+}
+
+bool in_range(const plab_property_desc& p, double v) {
+    if (std::isnan(v)) return false;
+    const bool lo = (p.flags & PLAB_MIN_EXCLUSIVE) ? v > p.min_value : v >= p.min_value;
+    const bool hi = (p.flags & PLAB_MAX_EXCLUSIVE) ? v < p.max_value : v <= p.max_value;
+    return lo && hi;
+}
+
+std::vector<std::string> check_properties(const plab_property_desc* p, uint32_t n) {
+    std::vector<std::string> bad;
+    if (n > 0 && !p) bad.push_back("property_count > 0 but properties is NULL");
+    for (uint32_t i = 0; p && i < n; ++i) {
+        const std::string key = p[i].key ? p[i].key : "#" + std::to_string(i);
+        if (!p[i].key || !*p[i].key) bad.push_back("property " + key + " has no key");
+        if (!p[i].name || !*p[i].name) bad.push_back("property " + key + " has no name");
+        if (!p[i].unit || !*p[i].unit)
+            bad.push_back("property " + key + " has no SI unit (use \"1\" for a dimensionless one)");
+        if (!p[i].doc) bad.push_back("property " + key + " has no doc text");
+        if (std::isnan(p[i].min_value) || std::isnan(p[i].max_value) || p[i].min_value > p[i].max_value)
+            bad.push_back("property " + key + " has no valid range (min <= max, not NaN)");
+        else if (!in_range(p[i], p[i].default_value))
+            bad.push_back("property " + key + " default " + fmt(p[i].default_value) + " is outside its range " +
+                          range_text(p[i]));
+        for (uint32_t j = 0; j < i; ++j)
+            if (p[j].key && p[i].key && std::string(p[j].key) == p[i].key)
+                bad.push_back("property key " + key + " is declared twice");
+    }
+    return bad;
+}
+
+std::vector<std::string> check_model_desc(const plab_contact_model_desc& d) {
+    std::vector<std::string> bad = check_properties(d.properties, d.property_count);
+    if (!d.name || !*d.name) bad.push_back("model has no name");
+    if (!d.doc) bad.push_back("model has no doc text");
+    if (!d.timestep_rule || !*d.timestep_rule)
+        bad.push_back("model does not state its stable-timestep rule (timestep_rule); the host needs "
+                      "set_stiffness() or set_dt_limit() from every active contact");
+    if (!d.activity_range) bad.push_back("model has no activity_range function");
+    if (!d.compute) bad.push_back("model has no compute function");
+    if (d.range_kind != PLAB_RANGE_GAP && d.range_kind != PLAB_RANGE_DISTANCE)
+        bad.push_back("range_kind must be PLAB_RANGE_GAP or PLAB_RANGE_DISTANCE");
+    if (d.history_count > 0 && !d.history) bad.push_back("history_count > 0 but history is NULL");
+    for (uint32_t i = 0; d.history && i < d.history_count; ++i) {
+        if (!d.history[i].name || !*d.history[i].name) bad.push_back("history slot " + std::to_string(i) + " has no name");
+        if (d.history[i].swap_rule > PLAB_SWAP_NEGATE)
+            bad.push_back("history slot " + std::to_string(i) + " has an unknown swap rule");
+    }
+    return bad;
+}
+
+PluginHost::PluginHost() {
+    if (*PLAB_PLUGIN_DIR) dirs_.push_back(PLAB_PLUGIN_DIR);
+    if (const char* env = std::getenv("PLAB_PLUGIN_PATH")) {
+        std::stringstream ss(env);
+        std::string d;
+        while (std::getline(ss, d, ':'))
+            if (!d.empty()) dirs_.insert(dirs_.begin(), d);  // the user's folders win
+    }
+}
+
+PluginHost::~PluginHost() = default;
+
+void PluginHost::add_search_dir(const std::string& dir, bool front) {
+    if (front) dirs_.insert(dirs_.begin(), dir);
+    else dirs_.push_back(dir);
+}
+
+std::string PluginHost::resolve(const std::string& ref, const std::string& relative_to) const {
+    const bool is_path = ref.find('/') != std::string::npos || fs::path(ref).extension() == ".so";
+    std::vector<std::string> tried;
+    if (is_path) {
+        fs::path p(ref);
+        if (p.is_relative() && !relative_to.empty()) p = fs::path(relative_to) / p;
+        if (fs::exists(p)) return fs::canonical(p).string();
+        throw PluginError("plug-in library '" + ref + "' not found (looked for " + p.string() + ")");
+    }
+    std::vector<std::string> dirs = dirs_;
+    if (!relative_to.empty()) dirs.push_back(relative_to);
+    for (const auto& d : dirs)
+        for (const std::string& file : {"plab_" + ref + ".so", "lib" + ref + ".so", ref + ".so"}) {
+            fs::path p = fs::path(d) / file;
+            tried.push_back(p.string());
+            if (fs::exists(p)) return fs::canonical(p).string();
+        }
+    throw PluginError("plug-in '" + ref + "' not found in the search path (" + join(dirs) +
+                      "); set PLAB_PLUGIN_PATH or give a path to the .so");
+}
+
+std::vector<std::string> PluginHost::discover() const {
+    std::vector<std::string> out;
+    for (const auto& d : dirs_) {
+        std::error_code ec;
+        if (!fs::is_directory(d, ec)) continue;
+        std::vector<std::string> here;
+        for (const auto& e : fs::directory_iterator(d, ec))
+            if (e.path().extension() == ".so") here.push_back(fs::canonical(e.path()).string());
+        std::sort(here.begin(), here.end());
+        for (auto& h : here)
+            if (std::find(out.begin(), out.end(), h) == out.end()) out.push_back(h);
+    }
+    return out;
+}
+
+const LoadedLibrary& PluginHost::load(const std::string& path_in) {
+    const std::string path = fs::exists(path_in) ? fs::canonical(path_in).string() : path_in;
+    for (const auto& l : libs_)
+        if (l.path == path) return l;
+    auto lib = std::make_unique<boost::dll::shared_library>();
+    boost::dll::fs::error_code ec;
+    lib->load(path, boost::dll::load_mode::rtld_local | boost::dll::load_mode::rtld_now, ec);
+    if (ec) throw PluginError("plug-in library " + path + " cannot be loaded: " + ec.message());
+    for (const char* sym : {"plab_plugin_abi_version", "plab_plugin_init"})
+        if (!lib->has(sym))
+            throw PluginError("plug-in library " + path + " has no entry point '" + sym +
+                              "'; define it with PLAB_PLUGIN(...) from <plab/contact_model.hpp>");
+    const uint32_t version = lib->get<uint32_t()>("plab_plugin_abi_version")();
+    if (version != PLAB_ABI_VERSION)
+        throw PluginError("plug-in library " + path + " was built for plug-in ABI version " + std::to_string(version) +
+                          " but this plab speaks version " + std::to_string(PLAB_ABI_VERSION) +
+                          "; rebuild it against this ParticleLab's headers");
+    LoadedLibrary entry;
+    entry.path = path;
+    loading_ = path;
+    problems_.clear();
+    const auto before_models = models_;
+    const auto before_passes = passes_;
+    plab_registrar reg{this, &cb_register_model, &cb_register_pass};
+    const int rc = lib->get<int(const plab_registrar*)>("plab_plugin_init")(&reg);
+    loading_.clear();
+    if (rc != 0 || !problems_.empty()) {
+        // roll back whatever this library registered before failing
+        for (auto it = models_.begin(); it != models_.end();)
+            it = before_models.count(it->first) ? std::next(it) : (model_lib_.erase(it->first), models_.erase(it));
+        for (auto it = passes_.begin(); it != passes_.end();)
+            it = before_passes.count(it->first) ? std::next(it) : (pass_lib_.erase(it->first), passes_.erase(it));
+        std::string why = problems_.empty() ? "plab_plugin_init returned " + std::to_string(rc) : join(problems_, "; ");
+        throw PluginError("plug-in library " + path + " refused: " + why);
+    }
+    for (const auto& [name, lib_path] : model_lib_)
+        if (lib_path == path) entry.models.push_back(name);
+    for (const auto& [name, lib_path] : pass_lib_)
+        if (lib_path == path) entry.passes.push_back(name);
+    entry.lib = std::move(lib);
+    libs_.push_back(std::move(entry));
+    return libs_.back();
+}
+
+int PluginHost::register_model(const plab_contact_model_desc* d) {
+    if (!d) { problems_.push_back("register_contact_model(NULL)"); return 1; }
+    auto bad = check_model_desc(*d);
+    const std::string name = d->name ? d->name : "?";
+    if (!bad.empty()) { problems_.push_back("model '" + name + "': " + join(bad, "; ")); return 1; }
+    if (models_.count(name) || passes_.count(name)) {
+        const std::string other = models_.count(name) ? model_lib_[name] : pass_lib_[name];
+        problems_.push_back("model name '" + name + "' is already registered by " + other);
+        return 1;
+    }
+    models_[name] = d;
+    model_lib_[name] = loading_;
+    return 0;
+}
+
+int PluginHost::register_pass(const plab_pass_desc* d) {
+    if (!d) { problems_.push_back("register_pass(NULL)"); return 1; }
+    std::vector<std::string> bad = check_properties(d->properties, d->property_count);
+    const std::string name = d->name && *d->name ? d->name : "?";
+    if (name == "?") bad.push_back("pass has no name");
+    if (!d->run) bad.push_back("pass has no run function");
+    if (d->phase > PLAB_PHASE_INTEGRATE) bad.push_back("pass has an unknown phase");
+    if (!bad.empty()) { problems_.push_back("pass '" + name + "': " + join(bad, "; ")); return 1; }
+    if (models_.count(name) || passes_.count(name)) {
+        const std::string other = models_.count(name) ? model_lib_[name] : pass_lib_[name];
+        problems_.push_back("pass name '" + name + "' is already registered by " + other);
+        return 1;
+    }
+    passes_[name] = d;
+    pass_lib_[name] = loading_;
+    return 0;
+}
+
+const plab_contact_model_desc* PluginHost::model(const std::string& name) const {
+    auto it = models_.find(name);
+    return it == models_.end() ? nullptr : it->second;
+}
+
+const plab_pass_desc* PluginHost::pass(const std::string& name) const {
+    auto it = passes_.find(name);
+    return it == passes_.end() ? nullptr : it->second;
+}
+
+std::vector<std::string> PluginHost::model_names() const {
+    std::vector<std::string> v;
+    for (const auto& [n, d] : models_) v.push_back(n);
+    return v;
+}
+
+std::vector<std::string> PluginHost::pass_names() const {
+    std::vector<std::string> v;
+    for (const auto& [n, d] : passes_) v.push_back(n);
+    return v;
+}
+
+} // namespace plab

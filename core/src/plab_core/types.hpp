@@ -1,0 +1,22 @@
+// Basic types of the kernel. Vectors are 3D everywhere; a 2D world keeps
+// z = 0 and rotates about z only (LAMMPS' choice: one binary, runtime
+// dimension — measured cheaper to maintain than templates on the dimension,
+// and the 2D overhead is one unused double per vector).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
+#include <cstdint>
+#include <limits>
+
+namespace plab {
+
+using Vec = Eigen::Vector3d;
+using BodyId = std::uint64_t;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Degrees of freedom that can be fixed, as bits.
+enum Dof : std::uint8_t { dof_x = 1, dof_y = 2, dof_z = 4, dof_rx = 8, dof_ry = 16, dof_rz = 32 };
+
+} // namespace plab

@@ -1,0 +1,366 @@
+// World set-up (groups, assignment table, fields, passes) and the cycle.
+// Detection lives in detection.cpp, the force pass in force_pass.cpp.
+#include "world.hpp"
+
+#include "error.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+namespace plab {
+
+const char* const phase_names[ph_count] = {"timestep", "law_of_motion", "contact_detection", "pre_force_passes",
+                                           "force_displacement", "reduction", "post_force_passes", "integration"};
+
+namespace {
+struct PhaseTimer {
+    double& slot;
+    std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+    ~PhaseTimer() { slot += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
+};
+} // namespace
+
+World::World(int d, std::shared_ptr<PluginHost> host) : dim(d), host_(std::move(host)) { bodies.dim = d; }
+
+World::~World() {
+    for (auto& inst : instances_)
+        if (inst->desc->destroy && inst->state) inst->desc->destroy(inst->state);
+    for (auto& p : passes_)
+        if (p.desc->destroy && p.state) p.desc->destroy(p.state);
+}
+
+int World::group_index(const std::string& name) {
+    const int found = find_group(name);
+    if (found >= 0) return found;
+    groups_.push_back(name);
+    const int n = int(groups_.size());
+    std::vector<int> grown(std::size_t(n) * n, -1);
+    for (int a = 0; a < n - 1; ++a)
+        for (int b = 0; b < n - 1; ++b) grown[a * n + b] = cmat_[a * (n - 1) + b];
+    cmat_ = std::move(grown);
+    return n - 1;
+}
+
+int World::find_group(const std::string& name) const {
+    for (std::size_t i = 0; i < groups_.size(); ++i)
+        if (groups_[i] == name) return int(i);
+    return -1;
+}
+
+int World::add_instance(const std::string& model, std::vector<double> props) {
+    const plab_contact_model_desc* d = host_->model(model);
+    if (!d) throw InputError("", "contact model '" + model + "' is not loaded");
+    auto inst = std::make_unique<ModelInstance>();
+    inst->model = model;
+    inst->desc = d;
+    inst->props = std::move(props);
+    inst->state = d->create ? d->create(inst->props.data()) : nullptr;
+    if (d->create && !inst->state)
+        throw PluginError("contact model '" + model + "' (" + host_->library_of_model(model) +
+                          ") failed to create an instance from its properties");
+    inst->range = d->activity_range(inst->props.data());
+    if (!std::isfinite(inst->range))
+        throw PluginError("contact model '" + model + "' reports a non-finite activity range");
+    inst->stride = int(d->history_count);
+    for (uint32_t f = 0; f < d->fields_read_count; ++f)
+        inst->fields_read.push_back(register_field(d->fields_read[f].name, d->fields_read[f].default_value));
+    for (uint32_t f = 0; f < d->fields_accumulated_count; ++f)
+        inst->fields_accumulated.push_back(
+            register_field(d->fields_accumulated[f].name, d->fields_accumulated[f].default_value));
+    inst->walls.with_wall = true;
+    instances_.push_back(std::move(inst));
+    mark_dirty();
+    return int(instances_.size()) - 1;
+}
+
+void World::assign(int a, int b, int instance) {
+    const int n = int(groups_.size());
+    cmat_[a * n + b] = instance;
+    cmat_[b * n + a] = instance;
+    mark_dirty();
+}
+
+int World::assigned(int a, int b) const { return cmat_[a * int(groups_.size()) + b]; }
+
+int World::field_index(const std::string& name) const {
+    for (std::size_t i = 0; i < field_names_.size(); ++i)
+        if (field_names_[i] == name) return int(i);
+    return -1;
+}
+
+int World::register_field(const std::string& name, double default_value) {
+    const int found = field_index(name);
+    if (found >= 0) return found;
+    field_names_.push_back(name);
+    field_defaults_.push_back(default_value);
+    fields_.emplace_back(bodies.size(), default_value);
+    return int(fields_.size()) - 1;
+}
+
+void World::resize_fields() {
+    for (std::size_t f = 0; f < fields_.size(); ++f) fields_[f].resize(bodies.size(), field_defaults_[f]);
+}
+
+void World::add_pass(const std::string& name, std::vector<double> props) {
+    const plab_pass_desc* d = host_->pass(name);
+    if (!d) throw InputError("", "pass '" + name + "' is not loaded");
+    PassInstance p;
+    p.desc = d;
+    p.props = std::move(props);
+    p.state = d->create ? d->create(p.props.data()) : nullptr;
+    if (d->create && !p.state) throw PluginError("pass '" + name + "' failed to create its state");
+    for (uint32_t f = 0; f < d->field_count; ++f)
+        p.fields.push_back(register_field(d->fields[f].name, d->fields[f].default_value));
+    // stable order: by phase, then stage, then order of addition
+    auto it = passes_.begin();
+    while (it != passes_.end() &&
+           (it->desc->phase < d->phase || (it->desc->phase == d->phase && it->desc->stage <= d->stage)))
+        ++it;
+    passes_.insert(it, std::move(p));
+}
+
+void World::run_passes(std::uint32_t phase) {
+    if (passes_.empty()) return;
+    std::vector<double*> cols;
+    for (auto& p : passes_) {
+        if (p.desc->phase != phase) continue;
+        cols.clear();
+        for (int f : p.fields) cols.push_back(fields_[f].data());
+        plab_pass_view v{};
+        v.dim = uint32_t(dim);
+        v.body_count = uint32_t(bodies.size());
+        v.dt = last_dt;
+        v.time = time;
+        v.position = bodies.position.empty() ? nullptr : bodies.position[0].data();
+        v.velocity = bodies.velocity.empty() ? nullptr : bodies.velocity[0].data();
+        v.force = bodies.force.empty() ? nullptr : bodies.force[0].data();
+        v.radius = bodies.radius.data();
+        v.mass = bodies.mass.data();
+        v.group = bodies.group.data();
+        v.fields = cols.data();
+        v.contact_count = uint32_t(pc_end1_.size());
+        v.contact_end1 = pc_end1_.data();
+        v.contact_end2 = pc_end2_.data();
+        v.contact_end2_is_wall = pc_wall_.data();
+        if (p.desc->run(p.state, p.props.data(), &v) != 0)
+            throw RunError(std::string("pass '") + p.desc->name + "' failed at step " + std::to_string(step_count));
+    }
+}
+
+double World::effective_skin() const {
+    if (skin >= 0) return skin;
+    double sum = 0;
+    for (double r : bodies.radius) sum += r;
+    return bodies.size() ? 0.25 * sum / double(bodies.size()) : 0.0;
+}
+
+void World::prepare() {
+    resize_fields();
+    k_trans_.assign(bodies.size(), 0.0);
+    k_rot_.assign(bodies.size(), 0.0);
+    need_rebuild_ = true;
+    {
+        PhaseTimer t{phase_seconds[ph_detection]};
+        rebuild();
+    }
+    // dt = 0 in the batch: evaluate forces at this state without advancing
+    // incremental history (a re-evaluation must not add a shear increment)
+    const double dt = last_dt;
+    last_dt = 0;
+    force_pass();
+    sum_energies(0.0);  // states (kinetic, strain) at this instant; no flow
+    last_dt = dt;
+    prepared_ = true;
+}
+
+// Kick–drift–kick form of the leapfrog (thesis eqs. 32–36): the same
+// positions as v(t+dt/2) = v(t-dt/2) + a dt, x += v dt, but velocities are
+// kept at whole steps so outputs, energies and restarts are synchronised.
+// Models see the half-step velocity, as in PFC.
+void World::step() {
+    if (!prepared_) prepare();
+    double dt;
+    {
+        PhaseTimer t{phase_seconds[ph_timestep]};
+        dt = fixed_dt > 0 ? fixed_dt : safety_factor * stable_timestep().critical;
+        if (!std::isfinite(dt) || dt <= 0)
+            throw RunError("no stable timestep: no contact model reports a stiffness or step limit; set a fixed "
+                           "timestep (timestep.fixed)");
+        last_dt = dt;
+    }
+    {
+        PhaseTimer t{phase_seconds[ph_motion]};
+        kick(0.5 * dt);
+        drift(dt);
+        wall_motion_since_build_ += walls.move(dt, dim);
+    }
+    {
+        PhaseTimer t{phase_seconds[ph_detection]};
+        if (need_rebuild_ || displacement_exceeds_skin()) rebuild();
+    }
+    time += dt;
+    ++step_count;
+    force_pass();
+    {
+        PhaseTimer t{phase_seconds[ph_motion]};
+        kick(0.5 * dt);
+        sum_energies(dt);
+    }
+    {
+        PhaseTimer t{phase_seconds[ph_integrate]};
+        run_passes(PLAB_PHASE_INTEGRATE);
+    }
+}
+
+void World::force_pass() {
+    {
+        PhaseTimer t{phase_seconds[ph_pre_force]};
+        run_passes(PLAB_PHASE_PRE_FORCE);
+    }
+    {
+        PhaseTimer t{phase_seconds[ph_force]};
+        for (auto& inst : instances_) {
+            geometry(*inst, inst->balls);
+            geometry(*inst, inst->walls);
+            resolve_wall_features(inst->walls);
+            compute(*inst, inst->balls);
+            compute(*inst, inst->walls);
+        }
+    }
+    {
+        PhaseTimer t{phase_seconds[ph_reduction]};
+        reduce();
+        check_finite();
+    }
+    {
+        PhaseTimer t{phase_seconds[ph_post_force]};
+        run_passes(PLAB_PHASE_POST_FORCE);
+    }
+}
+
+void World::kick(double h) {
+    const std::size_t n = bodies.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint8_t fix = bodies.fixity[i];
+        const double inv_m = 1.0 / bodies.mass[i], inv_i = 1.0 / bodies.inertia[i];
+        for (int c = 0; c < 3; ++c) {
+            if (!(fix & (dof_x << c))) bodies.velocity[i][c] += h * bodies.force[i][c] * inv_m;
+            if (!(fix & (dof_rx << c))) bodies.angular_velocity[i][c] += h * bodies.moment[i][c] * inv_i;
+        }
+    }
+}
+
+void World::drift(double dt) {
+    const std::size_t n = bodies.size();
+    double body_work = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec dx = bodies.velocity[i] * dt;
+        bodies.position[i] += dx;
+        body_work += bodies.mass[i] * gravity.dot(dx);  // exact for a constant force
+    }
+    energies.body += body_work;
+}
+
+void World::check_finite() const {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        if (bodies.position[i].allFinite() && bodies.force[i].allFinite() && bodies.moment[i].allFinite() &&
+            bodies.velocity[i].allFinite())
+            continue;
+        std::ostringstream s;
+        s << "non-finite state of ball id " << bodies.id[i] << " at step " << step_count << " (t = " << time
+          << " s): position " << bodies.position[i].transpose() << ", force " << bodies.force[i].transpose()
+          << "; likely cause: timestep " << last_dt << " s above the stable limit, or a contact model returned NaN";
+        throw RunError(s.str());
+    }
+}
+
+// Energy flows over the step just taken; states (kinetic, strain) are
+// recomputed at the synchronised velocities.
+void World::sum_energies(double dt) {
+    double kinetic = 0, boundary = 0;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Vec& v = bodies.velocity[i];
+        const Vec& w = bodies.angular_velocity[i];
+        kinetic += 0.5 * bodies.mass[i] * v.squaredNorm() + 0.5 * bodies.inertia[i] * w.squaredNorm();
+        boundary += bodies.applied_force[i].dot(v) * dt + bodies.applied_moment[i].dot(w) * dt;
+        const std::uint8_t fix = bodies.fixity[i] & ~bodies.implicit_fixity();
+        if (fix)  // reaction at a fixed degree of freedom does the work that keeps its velocity
+            for (int c = 0; c < 3; ++c) {
+                if (fix & (dof_x << c)) boundary -= bodies.force[i][c] * v[c] * dt;
+                if (fix & (dof_rx << c)) boundary -= bodies.moment[i][c] * w[c] * dt;
+            }
+    }
+    double strain = 0;
+    for (auto& inst : instances_)
+        for (ContactSet* s : {&inst->balls, &inst->walls}) {
+            for (std::size_t k = 0; k < s->size(); ++k) {
+                if (!s->active[k]) continue;
+                strain += s->strain[k];
+                if (dt == 0) continue;  // a re-evaluation, not a step: no dissipation
+                energies.slip += s->slip[k];
+                energies.dashpot += s->dashpot[k];
+                if (s->with_wall) {
+                    // work of the wall on the ball: -force (on wall) · v_wall(point) dt
+                    const Vec f(&s->force[3 * k]);
+                    const Vec p(&s->point[3 * k]);
+                    boundary -= f.dot(walls.velocity_at(walls.facets[s->end2[k]].wall, p)) * dt;
+                }
+            }
+        }
+    energies.kinetic = kinetic;
+    energies.strain = strain;
+    energies.boundary += boundary;
+}
+
+double World::unbalanced_force_ratio() const {
+    double unbalanced = 0;
+    std::size_t free_bodies = 0;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const std::uint8_t fix = bodies.fixity[i];
+        Vec f = bodies.force[i];
+        for (int c = 0; c < 3; ++c)
+            if (fix & (dof_x << c)) f[c] = 0;
+        if ((fix & (dof_x | dof_y | dof_z)) == (dof_x | dof_y | dof_z)) continue;
+        unbalanced += f.norm();
+        ++free_bodies;
+    }
+    double contact = 0;
+    std::size_t n = 0;
+    for (auto& inst : instances_)
+        for (const ContactSet* s : {&inst->balls, &inst->walls})
+            for (std::size_t k = 0; k < s->size(); ++k)
+                if (s->active[k]) {
+                    contact += Vec(&s->force[3 * k]).norm();
+                    ++n;
+                }
+    if (free_bodies == 0) return 0;
+    if (n == 0 || contact == 0) return kInf;
+    return (unbalanced / double(free_bodies)) / (contact / double(n));
+}
+
+std::size_t World::active_contacts() const {
+    std::size_t n = 0;
+    for (auto& inst : instances_)
+        for (const ContactSet* s : {&inst->balls, &inst->walls})
+            for (std::uint8_t a : s->active) n += a;
+    return n;
+}
+
+std::uint64_t World::state_hash() const {
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&h](const void* p, std::size_t bytes) {
+        const auto* c = static_cast<const unsigned char*>(p);
+        for (std::size_t i = 0; i < bytes; ++i) h = (h ^ c[i]) * 1099511628211ull;
+    };
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        mix(bodies.position[i].data(), 3 * sizeof(double));
+        mix(bodies.velocity[i].data(), 3 * sizeof(double));
+        mix(bodies.angular_velocity[i].data(), 3 * sizeof(double));
+    }
+    return h;
+}
+
+} // namespace plab

@@ -1,0 +1,186 @@
+// The DEM kernel: bodies, walls, the contact-model assignment table, contact
+// detection, and the cycle in PFC order. Physics lives in plug-ins; the world
+// computes contact geometry once (Yade's Ig2), hands it to each model in
+// batches, and sums forces onto bodies in a fixed order so the answer does
+// not depend on the thread count.
+#pragma once
+
+#include "bodies.hpp"
+#include "plugin_host.hpp"
+#include "types.hpp"
+#include "walls.hpp"
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace plab {
+
+// Candidate pairs of one model instance and one kind (ball–ball or ball–wall),
+// with their history and the columns of the contact batch. Rows are sorted by
+// the ids of the two ends; history is carried across rebuilds by that key.
+struct ContactSet {
+    bool with_wall = false;
+    std::vector<std::int32_t> end1, end2;
+    std::vector<BodyId> key1, key2;
+    std::vector<double> history;
+    // geometry (inputs of the batch)
+    std::vector<std::uint8_t> active, interior;
+    std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
+    std::vector<double> radius1, radius2, mass1, mass2, eff_mass, eff_radius;
+    // outputs
+    std::vector<double> force, moment1, moment2, strain, slip, dashpot, k_t, k_r, dt_limit;
+    std::vector<std::vector<double>> acc1, acc2;
+
+    std::size_t size() const { return end1.size(); }
+    void resize_columns(std::size_t n, int n_accumulated);
+};
+
+struct ModelInstance {
+    std::string model;
+    const plab_contact_model_desc* desc = nullptr;
+    std::vector<double> props;
+    void* state = nullptr;
+    double range = 0;  // activity range (gap or distance, see desc->range_kind)
+    int stride = 0;    // history doubles per contact
+    std::vector<int> fields_read, fields_accumulated;  // world field indices
+    ContactSet balls, walls;
+};
+
+struct PassInstance {
+    const plab_pass_desc* desc = nullptr;
+    std::vector<double> props;
+    void* state = nullptr;
+    std::vector<int> fields;
+};
+
+// Cumulative energies (J), PFC's energy bookkeeping. With no damping and no
+// friction kinetic + strain - body - boundary stays constant.
+struct Energies {
+    double kinetic = 0;       // state: translational + rotational
+    double strain = 0;        // state: stored in contact springs
+    double body = 0;          // work done by gravity
+    double boundary = 0;      // work done by walls, applied loads and fixed velocities
+    double slip = 0;          // dissipated by friction
+    double dashpot = 0;       // dissipated by contact dashpots
+    double local_damping = 0; // dissipated by local damping
+    double balance() const { return kinetic + strain - body - boundary + slip + dashpot + local_damping; }
+};
+
+enum Phase { ph_timestep, ph_motion, ph_detection, ph_pre_force, ph_force, ph_reduction, ph_post_force, ph_integrate, ph_count };
+extern const char* const phase_names[ph_count];
+
+struct StableStep {
+    double critical = kInf;  // min sqrt(m/k), sqrt(I/k_r), dt limits
+    std::string limited_by;  // which model/body/constraint set it
+};
+
+class World {
+public:
+    World(int dim, std::shared_ptr<PluginHost> host);
+    ~World();
+    World(const World&) = delete;
+    World& operator=(const World&) = delete;
+
+    const int dim;
+    Bodies bodies;
+    Walls walls;
+    Vec gravity = Vec::Zero();
+    double skin = -1;  // neighbour skin, m; < 0: a quarter of the mean radius
+
+    // ---- groups and the contact-model assignment table (PFC's CMAT) ----
+    int group_index(const std::string& name);   // creates on first use
+    int find_group(const std::string& name) const;  // -1 when unknown
+    const std::vector<std::string>& group_names() const { return groups_; }
+    // Creates an instance of a loaded model with property values (in the
+    // model's declaration order); returns its index.
+    int add_instance(const std::string& model, std::vector<double> props);
+    // Assigns an instance (or -1: no contact, no cost) to a pair of groups.
+    void assign(int group_a, int group_b, int instance);
+    int assigned(int group_a, int group_b) const;
+    const std::vector<std::unique_ptr<ModelInstance>>& instances() const { return instances_; }
+
+    // ---- per-body fields registered by plug-ins ----
+    int field_index(const std::string& name) const;
+    int register_field(const std::string& name, double default_value);
+    std::vector<double>& field(int index) { return fields_[index]; }
+    const std::vector<std::string>& field_names() const { return field_names_; }
+
+    void add_pass(const std::string& name, std::vector<double> props);
+
+    // ---- time stepping ----
+    double fixed_dt = 0;         // > 0: fixed step; 0: automatic
+    double safety_factor = 0.8;  // automatic step = safety * critical
+    double time = 0;
+    std::uint64_t step_count = 0;
+    double last_dt = 0;
+
+    // Critical step from the contacts of the last force pass and from a
+    // nominal contact per assigned group pair (before any contact exists).
+    StableStep stable_timestep();
+    StableStep nominal_timestep();
+    // One cycle: timestep, law of motion, detection, pre-force passes,
+    // force–displacement, reduction, post-force passes, integration.
+    void step();
+    // Forces at the current state (first call, or after the scene changed).
+    void prepare();
+
+    // ---- measurements ----
+    Energies energies;
+    double unbalanced_force_ratio() const;  // mean unbalanced / mean contact force
+    std::size_t active_contacts() const;
+    std::uint64_t state_hash() const;       // FNV-1a over positions, velocities, spins
+    std::array<double, ph_count> phase_seconds{};
+    std::uint64_t rebuilds = 0;
+    void mark_dirty() { need_rebuild_ = true; prepared_ = false; nominal_valid_ = false; }
+
+private:
+    std::shared_ptr<PluginHost> host_;
+    std::vector<std::string> groups_;
+    std::vector<int> cmat_;  // groups × groups → instance, -1 none
+    std::vector<std::unique_ptr<ModelInstance>> instances_;
+    std::vector<PassInstance> passes_;
+    std::vector<std::string> field_names_;
+    std::vector<std::vector<double>> fields_;
+    std::vector<double> field_defaults_;
+
+    // detection state
+    bool need_rebuild_ = true;
+    bool prepared_ = false;
+    bool nominal_valid_ = false;
+    StableStep nominal_cache_;
+    std::vector<Vec> position_at_build_;
+    double wall_motion_since_build_ = 0;
+    // per-body list of (set, row, side) for the deterministic reduction
+    struct Entry { std::uint32_t set; std::uint32_t row; };  // row's top bit: body is end 2
+    std::vector<std::uint32_t> entry_start_;
+    std::vector<Entry> entries_;
+    std::vector<ContactSet*> sets_;
+    std::vector<const ModelInstance*> set_owner_;
+    std::vector<double> k_trans_, k_rot_;  // per-body stiffness sums of the last pass
+    // active contacts for passes (built only when a pass is loaded)
+    std::vector<std::int32_t> pc_end1_, pc_end2_;
+    std::vector<std::uint8_t> pc_wall_;
+
+    double effective_skin() const;
+    void resize_fields();
+    void rebuild();
+    void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
+    void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
+    void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs);
+    void build_entries();
+    bool displacement_exceeds_skin() const;
+    void geometry(ModelInstance& inst, ContactSet& set);
+    void resolve_wall_features(ContactSet& set);
+    void compute(ModelInstance& inst, ContactSet& set);
+    void force_pass();
+    void reduce();
+    void run_passes(std::uint32_t phase);
+    void kick(double half_dt);
+    void drift(double dt);
+    void check_finite() const;
+    void sum_energies(double dt);
+};
+
+} // namespace plab

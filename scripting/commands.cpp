@@ -1,0 +1,374 @@
+// The command sequence (cycle, solve, set, output) and recorded histories.
+#include "generators.hpp"
+#include "simulation.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <ctime>
+#include <unistd.h>
+
+namespace plab {
+
+namespace {
+
+int component(const Node& n, const std::string& c) {
+    if (c == "x") return 0;
+    if (c == "y") return 1;
+    if (c == "z") return 2;
+    if (c == "magnitude") return 3;
+    n.fail("unknown component \"" + c + "\"; use x, y, z or magnitude");
+}
+
+double pick(const Vec& v, int c) { return c == 3 ? v.norm() : v[c]; }
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> out;
+    std::string cur;
+    for (char ch : s) {
+        if (ch == sep) { out.push_back(cur); cur.clear(); } else cur += ch;
+    }
+    out.push_back(cur);
+    return out;
+}
+
+const std::vector<Vec>& body_vectors(const Bodies& b, const std::string& which) {
+    if (which == "position") return b.position;
+    if (which == "velocity") return b.velocity;
+    if (which == "angular_velocity") return b.angular_velocity;
+    return b.force;
+}
+
+int body_index(const World& w, BodyId id) {
+    for (std::size_t i = 0; i < w.bodies.size(); ++i)
+        if (w.bodies.id[i] == id) return int(i);
+    return -1;
+}
+
+// One history column from its description.
+std::function<double(const World&)> quantity(const Node& n, const World& w) {
+    const std::string q = n.at("quantity").string();
+    const auto parts = split(q, '.');
+    const Node qn = n.at("quantity");
+    const char* known =
+        "time, step, dt, contacts, unbalanced_ratio, energy.<kinetic|strain|body|boundary|slip|dashpot|local_damping|"
+        "balance>, ball.<position|velocity|angular_velocity|force>.<x|y|z|magnitude> (with id), "
+        "group.<max|min|mean>.<position|velocity|...>.<x|y|z|magnitude> (with group), wall.<force|moment>.<x|y|z> "
+        "(with wall)";
+    if (q == "time") return [](const World& x) { return x.time; };
+    if (q == "step") return [](const World& x) { return double(x.step_count); };
+    if (q == "dt") return [](const World& x) { return x.last_dt; };
+    if (q == "contacts") return [](const World& x) { return double(x.active_contacts()); };
+    if (q == "unbalanced_ratio") return [](const World& x) { return x.unbalanced_force_ratio(); };
+    if (parts[0] == "energy" && parts.size() == 2) {
+        const std::string e = parts[1];
+        if (e == "kinetic") return [](const World& x) { return x.energies.kinetic; };
+        if (e == "strain") return [](const World& x) { return x.energies.strain; };
+        if (e == "body") return [](const World& x) { return x.energies.body; };
+        if (e == "boundary") return [](const World& x) { return x.energies.boundary; };
+        if (e == "slip") return [](const World& x) { return x.energies.slip; };
+        if (e == "dashpot") return [](const World& x) { return x.energies.dashpot; };
+        if (e == "local_damping") return [](const World& x) { return x.energies.local_damping; };
+        if (e == "balance") return [](const World& x) { return x.energies.balance(); };
+    }
+    const bool vec_name = parts.size() >= 2 && (parts[parts.size() - 2] == "position" || parts[parts.size() - 2] == "velocity" ||
+                                                parts[parts.size() - 2] == "angular_velocity" || parts[parts.size() - 2] == "force");
+    if (parts[0] == "ball" && parts.size() == 3 && vec_name) {
+        const BodyId id = BodyId(n.at("id").integer(0, long(w.bodies.next_id) - 1));
+        const std::string which = parts[1];
+        const int c = component(qn, parts[2]);
+        return [id, which, c](const World& x) {
+            const int i = body_index(x, id);
+            return i < 0 ? std::nan("") : pick(body_vectors(x.bodies, which)[i], c);
+        };
+    }
+    if (parts[0] == "group" && parts.size() == 4 && vec_name) {
+        const std::string g = n.at("group").string();
+        const int group = w.find_group(g);
+        if (group < 0) n.at("group").fail("unknown group \"" + g + "\"");
+        const std::string op = parts[1], which = parts[2];
+        if (op != "max" && op != "min" && op != "mean") qn.fail("unknown reduction \"" + op + "\"; use max, min or mean");
+        const int c = component(qn, parts[3]);
+        return [group, op, which, c](const World& x) {
+            double acc = op == "max" ? -kInf : (op == "min" ? kInf : 0.0);
+            std::size_t count = 0;
+            const auto& v = body_vectors(x.bodies, which);
+            for (std::size_t i = 0; i < x.bodies.size(); ++i) {
+                if (x.bodies.group[i] != group) continue;
+                const double s = pick(v[i], c);
+                acc = op == "max" ? std::max(acc, s) : op == "min" ? std::min(acc, s) : acc + s;
+                ++count;
+            }
+            return op == "mean" ? (count ? acc / double(count) : std::nan("")) : acc;
+        };
+    }
+    if (parts[0] == "wall" && parts.size() == 3 && (parts[1] == "force" || parts[1] == "moment")) {
+        const std::string name = n.at("wall").string();
+        int wall = -1;
+        for (std::size_t i = 0; i < w.walls.walls.size(); ++i)
+            if (w.walls.walls[i].name == name) wall = int(i);
+        if (wall < 0) n.at("wall").fail("unknown wall \"" + name + "\"");
+        const bool force = parts[1] == "force";
+        const int c = component(qn, parts[2]);
+        return [wall, force, c](const World& x) {
+            const Wall& wl = x.walls.walls[wall];
+            return pick(force ? wl.force : wl.moment, c);
+        };
+    }
+    qn.fail("unknown quantity \"" + q + "\"; known: " + known);
+}
+
+} // namespace
+
+void Simulation::load_histories(const Node& n) {
+    n.allow_keys({"every", "record"});
+    history_every_ = n.has("every") ? n.at("every").integer(1, 1L << 40) : 100;
+    const Node rec = n.at("record");
+    rec.expect_array();
+    for (std::size_t i = 0; i < rec.size(); ++i) {
+        const Node h = rec.at(i);
+        h.allow_keys({"name", "quantity", "id", "group", "wall"});
+        HistoryColumn col;
+        col.name = h.string_or("name", h.at("quantity").string());
+        col.sample = quantity(h, *world_);
+        history_cols_.push_back(std::move(col));
+    }
+}
+
+void Simulation::load_output(const Node& n) {
+    n.allow_keys({"dir", "vtk_interval"});
+    if (n.has("dir")) out_dir_ = n.at("dir").string();
+    vtk_interval_ = n.number_or("vtk_interval", 0.0, 0.0, kInf, false, true);
+}
+
+std::function<void(World&)> Simulation::load_set(const Node& n) {
+    n.allow_keys({"group", "id", "region", "wall", "velocity", "angular_velocity", "fix", "free", "applied_force",
+                  "local_damping", "gravity"});
+    const int dim = world_->dim;
+    std::vector<std::function<void(World&)>> actions;
+    if (n.has("gravity")) {
+        const Vec g = n.at("gravity").vec(dim);
+        actions.push_back([g](World& w) { w.gravity = g; });
+    }
+    if (n.has("wall")) {
+        const std::string name = n.at("wall").string();
+        int wall = -1;
+        for (std::size_t i = 0; i < world_->walls.walls.size(); ++i)
+            if (world_->walls.walls[i].name == name) wall = int(i);
+        if (wall < 0) n.at("wall").fail("unknown wall \"" + name + "\"");
+        for (const char* k : {"group", "id", "region", "fix", "free", "applied_force", "local_damping"})
+            if (n.has(k)) n.at(k).fail(std::string("'") + k + "' does not apply to a wall (set velocity or angular_velocity)");
+        if (n.has("velocity")) {
+            const Vec v = n.at("velocity").vec(dim);
+            actions.push_back([wall, v](World& w) { w.walls.walls[wall].velocity = v; });
+        }
+        if (n.has("angular_velocity")) {
+            Vec om = Vec::Zero();
+            if (dim == 2) om.z() = n.at("angular_velocity").number();
+            else om = n.at("angular_velocity").vec(3);
+            actions.push_back([wall, om](World& w) { w.walls.walls[wall].angular_velocity = om; });
+        }
+    } else if (n.has("group") || n.has("id") || n.has("region")) {
+        const std::vector<int> sel = select(n, *world_);
+        if (n.has("velocity")) {
+            const Vec v = n.at("velocity").vec(dim);
+            actions.push_back([sel, v](World& w) { for (int i : sel) w.bodies.velocity[i] = v; });
+        }
+        if (n.has("angular_velocity")) {
+            Vec om = Vec::Zero();
+            if (dim == 2) om.z() = n.at("angular_velocity").number();
+            else om = n.at("angular_velocity").vec(3);
+            actions.push_back([sel, om](World& w) { for (int i : sel) w.bodies.angular_velocity[i] = om; });
+        }
+        if (n.has("fix")) {
+            const std::uint8_t f = read_fixity(n.at("fix"));
+            actions.push_back([sel, f](World& w) { for (int i : sel) w.bodies.fixity[i] |= f; });
+        }
+        if (n.has("free")) {
+            const std::uint8_t f = read_fixity(n.at("free"));
+            actions.push_back([sel, f](World& w) {
+                for (int i : sel) w.bodies.fixity[i] = (w.bodies.fixity[i] & ~f) | w.bodies.implicit_fixity();
+            });
+        }
+        if (n.has("applied_force")) {
+            const Vec f = n.at("applied_force").vec(dim);
+            actions.push_back([sel, f](World& w) { for (int i : sel) w.bodies.applied_force[i] = f; });
+        }
+        if (n.has("local_damping")) {
+            const double a = n.at("local_damping").number(0.0, 1.0, false, true);
+            actions.push_back([sel, a](World& w) { for (int i : sel) w.bodies.local_damping[i] = a; });
+        }
+    } else if (!n.has("gravity")) {
+        n.fail("a set command needs a target: group, id, region or wall (or sets gravity)");
+    }
+    return [actions](World& w) { for (const auto& a : actions) a(w); };
+}
+
+// Bodies chosen by group, id and/or region (all given criteria must hold).
+std::vector<int> Simulation::select(const Node& n, const World& w) const {
+    int group = -1;
+    if (n.has("group")) {
+        group = w.find_group(n.at("group").string());
+        if (group < 0) n.at("group").fail("unknown group \"" + n.at("group").string() + "\"");
+    }
+    long id = -1;
+    if (n.has("id")) id = n.at("id").integer(0, long(w.bodies.next_id) - 1);
+    Vec lo = Vec::Constant(-kInf), hi = Vec::Constant(kInf);
+    if (n.has("region")) {
+        const Node r = n.at("region");
+        r.allow_keys({"min", "max"});
+        lo = r.at("min").vec(w.dim);
+        hi = r.at("max").vec(w.dim);
+        if (w.dim == 2) { lo.z() = -kInf; hi.z() = kInf; }
+    }
+    std::vector<int> sel;
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+        if (group >= 0 && w.bodies.group[i] != group) continue;
+        if (id >= 0 && w.bodies.id[i] != BodyId(id)) continue;
+        const Vec& p = w.bodies.position[i];
+        if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
+        sel.push_back(int(i));
+    }
+    if (sel.empty()) n.fail("selects no ball");
+    return sel;
+}
+
+void Simulation::load_commands(const Node& n) {
+    n.expect_array();
+    for (std::size_t i = 0; i < n.size(); ++i) {
+        const Node c = n.at(i);
+        c.expect_object();
+        if (c.size() != 1) c.fail("a command is an object with one key: cycle, solve, set or output");
+        Command cmd{Command::cycle, c.path()};
+        if (c.has("cycle")) {
+            cmd.value = double(c.at("cycle").integer(0, 1L << 50));
+        } else if (c.has("solve")) {
+            const Node s = c.at("solve");
+            s.allow_keys({"time", "ratio", "max_cycles"});
+            if (s.has("time") == s.has("ratio")) s.fail("solve needs exactly one of: time (s), ratio");
+            if (s.has("time")) {
+                cmd.kind = Command::solve_time;
+                cmd.value = s.at("time").positive();
+            } else {
+                cmd.kind = Command::solve_ratio;
+                cmd.value = s.at("ratio").positive();
+            }
+            cmd.max_cycles = s.has("max_cycles") ? s.at("max_cycles").integer(1, 1L << 50) : 10000000;
+        } else if (c.has("set")) {
+            cmd.kind = Command::set;
+            cmd.apply = load_set(c.at("set"));
+        } else if (c.has("output")) {
+            cmd.kind = Command::output;
+            c.at("output").choice({"vtk"});
+        } else {
+            c.fail("unknown command \"" + c.value().begin().key() + "\"; commands: cycle, solve, set, output");
+        }
+        commands_.push_back(std::move(cmd));
+    }
+}
+
+std::vector<double> Simulation::history(const std::string& name) const {
+    for (std::size_t c = 0; c < history_cols_.size(); ++c)
+        if (history_cols_[c].name == name) {
+            std::vector<double> out;
+            for (const auto& row : history_rows_) out.push_back(row[c]);
+            return out;
+        }
+    throw InputError("histories", "no history named \"" + name + "\"");
+}
+
+void Simulation::after_step() {
+    const World& w = *world_;
+    if (history_every_ > 0 && !history_cols_.empty() && w.step_count % std::uint64_t(history_every_) == 0) {
+        std::vector<double> row;
+        for (const auto& c : history_cols_) row.push_back(c.sample(w));
+        history_rows_.push_back(std::move(row));
+    }
+    if (vtk_interval_ > 0 && !out_dir_.empty() && w.time + 1e-12 >= next_vtk_time_) {
+        write_vtk_snapshot();
+        next_vtk_time_ += vtk_interval_;
+    }
+}
+
+void Simulation::cycle(long n) {
+    World& w = *world_;
+    if (w.step_count == 0 && history_rows_.empty() && !history_cols_.empty()) {
+        w.prepare();
+        history_rows_.emplace_back();
+        for (const auto& c : history_cols_) history_rows_.back().push_back(c.sample(w));
+    }
+    const bool progress = !quiet_ && isatty(STDERR_FILENO);
+    auto last = std::chrono::steady_clock::now();
+    for (long k = 0; k < n; ++k) {
+        w.step();
+        ++run_.steps;
+        after_step();
+        if (progress && (k & 255) == 0) {
+            const auto now = std::chrono::steady_clock::now();
+            if (std::chrono::duration<double>(now - last).count() > 0.5) {
+                last = now;
+                const double wall = std::chrono::duration<double>(now - started_).count();
+                fprintf(stderr, "\r  t = %.6g s  step %llu  %.0f steps/s   ", w.time, (unsigned long long)w.step_count,
+                        double(run_.steps) / std::max(wall, 1e-9));
+            }
+        }
+    }
+    if (progress) fprintf(stderr, "\r%60s\r", "");
+}
+
+void Simulation::run() {
+    started_ = std::chrono::steady_clock::now();
+    const std::clock_t cpu0 = std::clock();
+    World& w = *world_;
+    if (!quiet_) {
+        w.prepare();
+        const StableStep s = w.stable_timestep();
+        if (w.fixed_dt > 0) spdlog::info("timestep fixed at {:g} s; stable limit {:g} s ({})", w.fixed_dt, s.critical, s.limited_by);
+        else spdlog::info("timestep automatic: {:g} x critical {:g} s ({})", w.safety_factor, s.critical, s.limited_by);
+    }
+    if (vtk_interval_ > 0 && !out_dir_.empty() && w.step_count == 0) {
+        w.prepare();
+        write_vtk_snapshot();
+        next_vtk_time_ = vtk_interval_;
+    }
+    try {
+        for (const Command& c : commands_) {
+            switch (c.kind) {
+            case Command::cycle: cycle(long(c.value)); break;
+            case Command::solve_time: {
+                const double end = w.time + c.value;
+                long guard = 0;
+                while (w.time < end * (1 - 1e-12) && guard++ < c.max_cycles) cycle(1);
+                break;
+            }
+            case Command::solve_ratio: {
+                long done = 0;
+                if (w.step_count == 0) w.prepare();
+                while (w.unbalanced_force_ratio() > c.value) {
+                    if (done >= c.max_cycles)
+                        throw RunError(c.path + ": ratio " + std::to_string(w.unbalanced_force_ratio()) +
+                                       " still above " + std::to_string(c.value) + " after " + std::to_string(done) +
+                                       " cycles (max_cycles); add local damping or raise max_cycles");
+                    cycle(10);
+                    done += 10;
+                }
+                break;
+            }
+            case Command::set: c.apply(w); w.mark_dirty(); break;
+            case Command::output: if (!out_dir_.empty()) write_vtk_snapshot(); break;
+            }
+        }
+    } catch (...) {
+        run_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+        run_.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+        if (!out_dir_.empty()) write_outputs();
+        throw;
+    }
+    run_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    run_.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+    run_.simulated_time = w.time;
+    run_.particle_steps_per_second = run_.wall_seconds > 0 ? double(run_.steps) * double(w.bodies.size()) / run_.wall_seconds : 0;
+    if (!out_dir_.empty()) write_outputs();
+}
+
+} // namespace plab

@@ -1,0 +1,229 @@
+#include "generators.hpp"
+
+#include <plab_core/plugin_host.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace plab {
+
+namespace {
+
+struct Material {
+    double radius_lo = 0, radius_hi = 0, density = 0, damping = 0;
+    int group = 0;
+    std::uint8_t fixity = 0;
+};
+
+Material read_material(const Node& n, World& w, bool radius_range) {
+    Material m;
+    const Node r = n.at("radius");
+    if (radius_range && r.value().is_array()) {
+        if (r.size() != 2) r.fail("expected a radius or a range [min, max], got " + show(r.value()));
+        m.radius_lo = r.at(0).positive();
+        m.radius_hi = r.at(1).positive();
+        if (m.radius_hi < m.radius_lo) r.fail("radius range [min, max] has max < min");
+    } else {
+        m.radius_lo = m.radius_hi = r.positive();
+    }
+    m.density = n.at("density").positive();
+    m.damping = n.number_or("local_damping", 0.0, 0.0, 1.0, false, true);
+    m.group = w.group_index(n.string_or("group", "balls"));
+    m.fixity = n.has("fix") ? read_fixity(n.at("fix")) : 0;
+    return m;
+}
+
+Box read_box(const Node& n, int dim) {
+    n.allow_keys({"min", "max"});
+    Box b{n.at("min").vec(dim), n.at("max").vec(dim)};
+    for (int c = 0; c < dim; ++c)
+        if (!(b.lo[c] < b.hi[c])) n.at("max").fail("box max must exceed min in every direction");
+    return b;
+}
+
+void add(World& w, const Material& m, const Vec& p, double radius, const Vec& v = Vec::Zero(),
+         const Vec& spin = Vec::Zero()) {
+    BallSpec s;
+    s.position = p;
+    s.velocity = v;
+    s.angular_velocity = spin;
+    s.radius = radius;
+    s.density = m.density;
+    s.group = m.group;
+    s.fixity = m.fixity;
+    s.local_damping = m.damping;
+    w.bodies.add(s);
+}
+
+void single_ball(const Node& n, World& w) {
+    n.allow_keys({"type", "group", "position", "radius", "density", "velocity", "angular_velocity", "fix",
+                  "local_damping"});
+    const Material m = read_material(n, w, false);
+    Vec spin = Vec::Zero();
+    if (n.has("angular_velocity")) {
+        if (w.dim == 2) spin.z() = n.at("angular_velocity").number();
+        else spin = n.at("angular_velocity").vec(3);
+    }
+    add(w, m, n.at("position").vec(w.dim), m.radius_lo, n.vec_or("velocity", w.dim, Vec::Zero()), spin);
+}
+
+// Regular packings filling a box with ball centres at least r from its faces:
+// 2D square / hexagonal (rows r√3 apart, odd rows shifted by r); 3D cubic /
+// hcp (layers 2r√(2/3) apart, ABAB stacking). Optional jitter for benchmarks.
+Box lattice(const Node& n, World& w) {
+    n.allow_keys({"type", "group", "box", "radius", "density", "packing", "spacing", "fix", "local_damping", "jitter",
+                  "velocity"});
+    const Material m = read_material(n, w, false);
+    const Box box = read_box(n.at("box"), w.dim);
+    const double r = m.radius_lo;
+    const double a = n.number_or("spacing", 2 * r, 2 * r, kInf, false, true);  // centre spacing
+    const std::string packing = n.has("packing") ? (w.dim == 2 ? n.at("packing").choice({"square", "hexagonal"})
+                                                                : n.at("packing").choice({"cubic", "hcp"}))
+                                                 : (w.dim == 2 ? "hexagonal" : "cubic");
+    double jit_x = 0, jit_v = 0;
+    std::uint64_t seed = 1;
+    if (n.has("jitter")) {
+        const Node j = n.at("jitter");
+        j.allow_keys({"position", "velocity", "seed"});
+        jit_x = j.number_or("position", 0.0, 0.0, r, false, false);
+        jit_v = j.number_or("velocity", 0.0, 0.0, kInf, false, true);
+        seed = std::uint64_t(j.has("seed") ? j.at("seed").integer(0, 1L << 40) : 1);
+    }
+    Rng rng(seed);
+    const Vec v0 = n.vec_or("velocity", w.dim, Vec::Zero());
+    const bool hex = packing == "hexagonal" || packing == "hcp";
+    const double dy = hex ? a * std::sqrt(3.0) / 2.0 : a;   // row pitch (2D) / in-layer row pitch (3D)
+    const double dz = packing == "hcp" ? a * std::sqrt(2.0 / 3.0) : a;
+    const Vec lo = box.lo + Vec::Constant(r), hi = box.hi - Vec::Constant(r);
+    const long nz = w.dim == 3 ? long(std::floor((hi.z() - lo.z()) / dz + 1e-9)) + 1 : 1;
+    std::size_t count = 0;
+    for (long k = 0; k < nz; ++k) {
+        const double layer_x = packing == "hcp" && (k % 2) ? a / 2 : 0.0;
+        const double layer_y = packing == "hcp" && (k % 2) ? a * std::sqrt(3.0) / 6.0 : 0.0;
+        const long ny = long(std::floor((hi.y() - lo.y() - layer_y) / dy + 1e-9)) + 1;
+        for (long j = 0; j < ny; ++j) {
+            const double shift = hex && (j % 2) ? a / 2 : 0.0;
+            for (long i = 0;; ++i) {
+                Vec p(lo.x() + layer_x + shift + i * a, lo.y() + layer_y + j * dy, w.dim == 3 ? lo.z() + k * dz : 0.0);
+                if (p.x() > hi.x() + 1e-9 * a) break;
+                Vec v = v0;
+                for (int c = 0; c < w.dim; ++c) {
+                    if (jit_x > 0) p[c] += rng.uniform(-jit_x, jit_x);
+                    if (jit_v > 0) v[c] += rng.uniform(-jit_v, jit_v);
+                }
+                add(w, m, p, r, v);
+                ++count;
+            }
+        }
+    }
+    if (count == 0) n.at("box").fail("box is too small for one ball of radius " + std::to_string(r));
+    return box;
+}
+
+// Random non-overlapping fill by rejection on a background grid.
+Box random_fill(const Node& n, World& w) {
+    n.allow_keys({"type", "group", "box", "radius", "density", "count", "seed", "fix", "local_damping", "max_attempts"});
+    const Material m = read_material(n, w, true);
+    const Box box = read_box(n.at("box"), w.dim);
+    const long count = n.at("count").integer(1, 100000000);
+    Rng rng(std::uint64_t(n.has("seed") ? n.at("seed").integer(0, 1L << 40) : 1));
+    const long max_attempts = n.has("max_attempts") ? n.at("max_attempts").integer(1, 1L << 40) : 1000 * count;
+    std::vector<Vec> placed;
+    std::vector<double> radii;
+    const double cell = 2 * m.radius_hi;
+    std::array<long, 3> dims{1, 1, 1};
+    for (int c = 0; c < w.dim; ++c) dims[c] = std::max(1L, long((box.hi[c] - box.lo[c]) / cell) + 1);
+    std::vector<std::vector<int>> grid(std::size_t(dims[0] * dims[1] * dims[2]));
+    auto cell_of = [&](const Vec& p, int c) { return std::clamp(long((p[c] - box.lo[c]) / cell), 0L, dims[c] - 1); };
+    long attempts = 0;
+    while (long(placed.size()) < count && attempts < max_attempts) {
+        ++attempts;
+        const double r = rng.uniform(m.radius_lo, m.radius_hi);
+        Vec p = Vec::Zero();
+        bool fits = true;
+        for (int c = 0; c < w.dim; ++c) {
+            if (box.hi[c] - box.lo[c] < 2 * r) fits = false;
+            p[c] = rng.uniform(box.lo[c] + r, box.hi[c] - r);
+        }
+        if (!fits) continue;
+        const long cx = cell_of(p, 0), cy = cell_of(p, 1), cz = w.dim == 3 ? cell_of(p, 2) : 0;
+        for (long z = std::max(0L, cz - 1); fits && z <= std::min(dims[2] - 1, cz + 1); ++z)
+            for (long y = std::max(0L, cy - 1); fits && y <= std::min(dims[1] - 1, cy + 1); ++y)
+                for (long x = std::max(0L, cx - 1); fits && x <= std::min(dims[0] - 1, cx + 1); ++x)
+                    for (int q : grid[(z * dims[1] + y) * dims[0] + x])
+                        if ((placed[q] - p).norm() < radii[q] + r) { fits = false; break; }
+        if (!fits) continue;
+        grid[(cz * dims[1] + cy) * dims[0] + cx].push_back(int(placed.size()));
+        placed.push_back(p);
+        radii.push_back(r);
+    }
+    if (long(placed.size()) < count) {
+        std::ostringstream s;
+        s << "could place only " << placed.size() << " of " << count << " non-overlapping balls in " << attempts
+          << " attempts; enlarge the box, lower the count or the radius";
+        n.at("count").fail(s.str());
+    }
+    for (std::size_t i = 0; i < placed.size(); ++i) add(w, m, placed[i], radii[i]);
+    return box;
+}
+
+} // namespace
+
+std::uint8_t read_fixity(const Node& n) {
+    n.expect_array();
+    std::uint8_t f = 0;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+        const std::string d = n.at(i).choice({"x", "y", "z", "rx", "ry", "rz", "translation", "rotation", "all"});
+        if (d == "x") f |= dof_x;
+        else if (d == "y") f |= dof_y;
+        else if (d == "z") f |= dof_z;
+        else if (d == "rx") f |= dof_rx;
+        else if (d == "ry") f |= dof_ry;
+        else if (d == "rz") f |= dof_rz;
+        else if (d == "translation") f |= dof_x | dof_y | dof_z;
+        else if (d == "rotation") f |= dof_rx | dof_ry | dof_rz;
+        else f = 63;
+    }
+    return f;
+}
+
+std::optional<Box> generate_bodies(const Node& n, World& w) {
+    const std::string type = n.at("type").choice({"ball", "lattice", "random_fill"});
+    if (type == "ball") {
+        single_ball(n, w);
+        return std::nullopt;
+    }
+    w.mark_dirty();
+    return type == "lattice" ? lattice(n, w) : random_fill(n, w);
+}
+
+std::vector<double> read_properties(const Node& owner, const plab_property_desc* props, uint32_t count,
+                                    const std::string& what) {
+    std::vector<double> values(count);
+    for (uint32_t p = 0; p < count; ++p) values[p] = props[p].default_value;
+    if (!owner.has("properties")) return values;
+    const Node given = owner.at("properties");
+    given.expect_object();
+    for (auto it = given.value().begin(); it != given.value().end(); ++it) {
+        const Node v(*it, given.path() + "." + it.key());
+        uint32_t p = 0;
+        while (p < count && it.key() != props[p].key) ++p;
+        if (p == count) {
+            std::string known;
+            for (uint32_t q = 0; q < count; ++q) known += (known.empty() ? "" : ", ") + std::string(props[q].key);
+            v.fail("unknown property '" + it.key() + "' of " + what + "; its properties: " + (known.empty() ? "none" : known));
+        }
+        if (!it->is_number()) v.fail("expected a number (" + std::string(props[p].unit) + "), got " + show(*it));
+        const double x = it->get<double>();
+        if (!in_range(props[p], x)) {
+            std::ostringstream s;
+            s << "value " << x << " of " << props[p].name << " is outside the valid range " << range_text(props[p]) << " "
+              << props[p].unit;
+            v.fail(s.str());
+        }
+        values[p] = x;
+    }
+    return values;
+}
+
+} // namespace plab

@@ -1,0 +1,55 @@
+// Scene generators: single balls, regular lattices, random non-overlapping
+// fills, and walls; plus reading a plug-in's properties from a scene.
+#pragma once
+
+#include "json_reader.hpp"
+
+#include <plab/abi.h>
+#include <plab_core/world.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace plab {
+
+struct Box {
+    Vec lo, hi;
+    bool overlaps(const Box& o, int dim) const {
+        for (int c = 0; c < dim; ++c)
+            if (hi[c] <= o.lo[c] || o.hi[c] <= lo[c]) return false;
+        return true;
+    }
+};
+
+// Deterministic across platforms (std:: distributions are not).
+class Rng {
+public:
+    explicit Rng(std::uint64_t seed) : s_(seed * 0x9E3779B97F4A7C15ull + 1) {}
+    std::uint64_t next() {  // splitmix64
+        std::uint64_t z = (s_ += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    double uniform(double a, double b) { return a + (b - a) * double(next() >> 11) * 0x1.0p-53; }
+
+private:
+    std::uint64_t s_;
+};
+
+// Adds the balls of one `bodies[i]` entry; returns the region it filled
+// (lattice and random fill) so overlapping regions can be refused.
+std::optional<Box> generate_bodies(const Node& n, World& w);
+void generate_wall(const Node& n, World& w);
+
+// Property values in declaration order: scene values checked against the
+// declared range, defaults for the rest; an unknown key lists the known ones.
+std::vector<double> read_properties(const Node& owner, const plab_property_desc* props, uint32_t count,
+                                    const std::string& what);
+
+// Degrees of freedom named in a "fix" list ("x", "y", "z", "rx", "ry", "rz",
+// "translation", "rotation", "all").
+std::uint8_t read_fixity(const Node& n);
+
+} // namespace plab

@@ -1,0 +1,264 @@
+// Outputs of a run: history CSV, VTK XML PolyData snapshots (.vtp) with a
+// .pvd series for ParaView, and the run summary JSON. Every file is written
+// to a temporary name and renamed, so a killed run never leaves half a file.
+#include "simulation.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace plab {
+
+namespace {
+
+void write_atomically(const fs::path& path, const std::string& text) {
+    fs::create_directories(path.parent_path());
+    const fs::path tmp = path.string() + ".tmp";
+    {
+        std::ofstream f(tmp, std::ios::binary);
+        f << text;
+        if (!f) throw std::runtime_error("cannot write " + tmp.string());
+    }
+    fs::rename(tmp, path);
+}
+
+// A small VTK XML PolyData writer (ASCII): points, vertices or lines, and
+// point/cell data arrays.
+struct VtpWriter {
+    std::ostringstream points, conn, offsets, data;
+    std::size_t n_points = 0, n_cells = 0;
+    bool lines = false;
+
+    void array(const std::string& name, int comps, const std::vector<double>& values) {
+        data << "<DataArray type=\"Float64\" Name=\"" << name << "\" NumberOfComponents=\"" << comps
+             << "\" format=\"ascii\">\n";
+        for (double v : values) data << v << ' ';
+        data << "\n</DataArray>\n";
+    }
+    std::string finish() const {
+        std::ostringstream s;
+        s << std::setprecision(10);
+        s << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+          << "<PolyData>\n<Piece NumberOfPoints=\"" << n_points << "\" NumberOfVerts=\"" << (lines ? 0 : n_cells)
+          << "\" NumberOfLines=\"" << (lines ? n_cells : 0) << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+          << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
+          << points.str() << "\n</DataArray></Points>\n"
+          << (lines ? "<CellData>\n" : "<PointData>\n") << data.str() << (lines ? "</CellData>\n" : "</PointData>\n")
+          << (lines ? "<Lines>\n" : "<Verts>\n")
+          << "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n" << conn.str() << "\n</DataArray>\n"
+          << "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n" << offsets.str() << "\n</DataArray>\n"
+          << (lines ? "</Lines>\n" : "</Verts>\n") << "</Piece>\n</PolyData>\n</VTKFile>\n";
+        return s.str();
+    }
+};
+
+std::vector<double> flatten(const std::vector<Vec>& v) {
+    std::vector<double> out;
+    out.reserve(3 * v.size());
+    for (const Vec& x : v) out.insert(out.end(), {x.x(), x.y(), x.z()});
+    return out;
+}
+
+std::string balls_vtp(const World& w) {
+    VtpWriter v;
+    const Bodies& b = w.bodies;
+    v.n_points = v.n_cells = b.size();
+    v.points << std::setprecision(12);
+    v.data << std::setprecision(12);
+    for (std::size_t i = 0; i < b.size(); ++i) {
+        v.points << b.position[i].x() << ' ' << b.position[i].y() << ' ' << b.position[i].z() << ' ';
+        v.conn << i << ' ';
+        v.offsets << i + 1 << ' ';
+    }
+    v.array("radius", 1, b.radius);
+    v.array("id", 1, std::vector<double>(b.id.begin(), b.id.end()));
+    v.array("group", 1, std::vector<double>(b.group.begin(), b.group.end()));
+    v.array("velocity", 3, flatten(b.velocity));
+    v.array("angular_velocity", 3, flatten(b.angular_velocity));
+    v.array("force", 3, flatten(b.force));
+    for (std::size_t f = 0; f < w.field_names().size(); ++f)
+        v.array(w.field_names()[f], 1, const_cast<World&>(w).field(int(f)));
+    return v.finish();
+}
+
+// Ball–ball contacts as lines between centres, with the contact force.
+std::string contacts_vtp(const World& w) {
+    VtpWriter v;
+    v.lines = true;
+    v.points << std::setprecision(12);
+    v.data << std::setprecision(12);
+    std::vector<double> force, normal_force;
+    for (const auto& inst : w.instances()) {
+        const ContactSet& s = inst->balls;
+        for (std::size_t k = 0; k < s.size(); ++k) {
+            if (!s.active[k]) continue;
+            for (int e : {s.end1[k], s.end2[k]}) {
+                const Vec& p = w.bodies.position[e];
+                v.points << p.x() << ' ' << p.y() << ' ' << p.z() << ' ';
+            }
+            v.conn << 2 * v.n_cells << ' ' << 2 * v.n_cells + 1 << ' ';
+            ++v.n_cells;
+            v.offsets << 2 * v.n_cells << ' ';
+            const Vec f(&s.force[3 * k]), n(&s.normal[3 * k]);
+            force.insert(force.end(), {f.x(), f.y(), f.z()});
+            normal_force.push_back(f.dot(n));
+        }
+    }
+    v.n_points = 2 * v.n_cells;
+    v.array("force", 3, force);
+    v.array("normal_force", 1, normal_force);
+    return v.finish();
+}
+
+// Wall facets as lines (2D segments, 3D triangle edges).
+std::string walls_vtp(const World& w) {
+    VtpWriter v;
+    v.lines = true;
+    std::vector<double> wall_index;
+    for (const Facet& f : w.walls.facets) {
+        std::vector<Vec> pts;
+        if (f.kind == FacetKind::segment) pts = {f.a, f.b};
+        else if (f.kind == FacetKind::triangle) pts = {f.a, f.b, f.c, f.a};
+        else continue;  // infinite planes are not drawn
+        for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+            for (const Vec& p : {pts[k], pts[k + 1]}) v.points << p.x() << ' ' << p.y() << ' ' << p.z() << ' ';
+            v.conn << 2 * v.n_cells << ' ' << 2 * v.n_cells + 1 << ' ';
+            ++v.n_cells;
+            v.offsets << 2 * v.n_cells << ' ';
+            wall_index.push_back(f.wall);
+        }
+    }
+    v.n_points = 2 * v.n_cells;
+    v.array("wall", 1, wall_index);
+    return v.finish();
+}
+
+} // namespace
+
+void Simulation::write_vtk_snapshot() {
+    const fs::path dir(out_dir_);
+    char name[32];
+    std::snprintf(name, sizeof name, "%05d", vtk_frames_++);
+    write_atomically(dir / "vtk" / (std::string("balls_") + name + ".vtp"), balls_vtp(*world_));
+    write_atomically(dir / "vtk" / (std::string("contacts_") + name + ".vtp"), contacts_vtp(*world_));
+    write_atomically(dir / "vtk" / (std::string("walls_") + name + ".vtp"), walls_vtp(*world_));
+    vtk_series_.emplace_back(world_->time, name);
+    std::ostringstream pvd;
+    pvd << std::setprecision(12) << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+    for (const auto& [t, n] : vtk_series_)
+        for (const char* part : {"balls", "contacts", "walls"})
+            pvd << "<DataSet timestep=\"" << t << "\" part=\"" << (part[0] == 'b' ? 0 : part[0] == 'c' ? 1 : 2)
+                << "\" file=\"vtk/" << part << "_" << n << ".vtp\"/>\n";
+    pvd << "</Collection>\n</VTKFile>\n";
+    write_atomically(dir / "series.pvd", pvd.str());
+}
+
+json Simulation::summary() const {
+    const World& w = *world_;
+    json s;
+    s["dimension"] = w.dim;
+    s["bodies"] = w.bodies.size();
+    s["steps"] = w.step_count;
+    s["simulated_time"] = w.time;
+    s["wall_seconds"] = run_.wall_seconds;
+    s["cpu_seconds"] = run_.cpu_seconds;
+    s["particle_steps_per_second"] = run_.particle_steps_per_second;
+    s["contacts"] = w.active_contacts();
+    s["neighbour_rebuilds"] = w.rebuilds;
+    const StableStep st = const_cast<World&>(w).stable_timestep();
+    s["timestep"] = {{"mode", w.fixed_dt > 0 ? "fixed" : "automatic"},
+                     {"last_dt", w.last_dt},
+                     {"critical", st.critical},
+                     {"limited_by", st.limited_by},
+                     {"safety_factor", w.safety_factor}};
+    if (!timestep_note_.empty()) s["timestep"]["note"] = timestep_note_;
+    const Energies& e = w.energies;
+    s["energies"] = {{"kinetic", e.kinetic}, {"strain", e.strain}, {"body_work", e.body},
+                     {"boundary_work", e.boundary}, {"slip", e.slip}, {"dashpot", e.dashpot},
+                     {"local_damping", e.local_damping}, {"balance", e.balance()}};
+    json phases;
+    for (int p = 0; p < ph_count; ++p) phases[phase_names[p]] = w.phase_seconds[p];
+    s["phase_seconds"] = phases;
+    json models = json::array();
+    for (const auto& inst : w.instances()) {
+        std::size_t active = 0;
+        for (std::uint8_t a : inst->balls.active) active += a;
+        for (std::uint8_t a : inst->walls.active) active += a;
+        models.push_back({{"model", inst->model}, {"candidate_pairs", inst->balls.size() + inst->walls.size()},
+                          {"active_contacts", active}});
+    }
+    s["models"] = models;
+    std::ostringstream hash;
+    hash << std::hex << w.state_hash();
+    s["state_hash"] = hash.str();
+    return s;
+}
+
+void Simulation::write_outputs() const {
+    const fs::path dir(out_dir_);
+    if (!history_cols_.empty()) {
+        std::ostringstream csv;
+        csv << std::setprecision(12);
+        for (std::size_t c = 0; c < history_cols_.size(); ++c) csv << (c ? "," : "") << history_cols_[c].name;
+        csv << "\n";
+        for (const auto& row : history_rows_) {
+            for (std::size_t c = 0; c < row.size(); ++c) csv << (c ? "," : "") << row[c];
+            csv << "\n";
+        }
+        write_atomically(dir / "history.csv", csv.str());
+    }
+    write_atomically(dir / "summary.json", summary().dump(2) + "\n");
+}
+
+void apply_override(json& scene, const std::string& assignment) {
+    const auto eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw InputError("--set " + assignment, "expected PATH=VALUE, e.g. contact_models.0.properties.kn=1e6");
+    const std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+    json value = json::parse(text, nullptr, false);
+    if (value.is_discarded()) value = text;
+    json* node = &scene;
+    std::string walked = "scene";
+    std::stringstream ss(path);
+    std::string key;
+    std::vector<std::string> keys;
+    while (std::getline(ss, key, '.')) keys.push_back(key);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        const bool last = i + 1 == keys.size();
+        const std::string& k = keys[i];
+        if (node->is_array()) {
+            char* end = nullptr;
+            const long idx = std::strtol(k.c_str(), &end, 10);
+            if (*end || idx < 0 || std::size_t(idx) >= node->size())
+                throw InputError(walked + "." + k, "--set " + path + ": index \"" + k + "\" is not within [0, " +
+                                                       std::to_string(node->size()) + ")");
+            node = &(*node)[std::size_t(idx)];
+        } else if (node->is_object()) {
+            // the last key may be new (an optional property not in the file yet)
+            if (!node->contains(k) && !last)
+                throw InputError(walked + "." + k, "--set " + path + ": no key \"" + k + "\" in the scene");
+            node = &(*node)[k];
+        } else {
+            throw InputError(walked, "--set " + path + ": cannot descend into " + show(*node));
+        }
+        walked += "." + k;
+    }
+    *node = value;
+}
+
+json read_scene_file(const std::string& path) {
+    std::ifstream f(path);
+    if (!f) throw InputError(path, "cannot open the scene file");
+    std::stringstream buf;
+    buf << f.rdbuf();
+    try {
+        return json::parse(buf.str());
+    } catch (const json::parse_error& e) {
+        throw InputError(path, std::string("malformed JSON: ") + e.what());
+    }
+}
+
+} // namespace plab

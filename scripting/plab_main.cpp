@@ -1,0 +1,176 @@
+// The `plab` command line: run scenes, list plug-ins, run validation cases.
+#include "simulation.hpp"
+#include "validation.hpp"
+
+#include <plab_core/plugin_host.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace plab;
+
+namespace {
+
+const char* usage =
+    "usage:\n"
+    "  plab run SCENE.json [--set PATH=VALUE]... [--out DIR] [--quiet]\n"
+    "  plab plugins [--describe MODEL]\n"
+    "  plab validate CASE... | --list | --all [--quick]\n";
+
+int cmd_run(const std::vector<std::string>& args) {
+    std::string scene_path, out;
+    std::vector<std::string> sets;
+    bool quiet = false;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--set" && i + 1 < args.size()) sets.push_back(args[++i]);
+        else if (a == "--out" && i + 1 < args.size()) out = args[++i];
+        else if (a == "--quiet") quiet = true;
+        else if (a.rfind("--", 0) == 0) throw InputError("command line", "unknown option " + a + "\n" + usage);
+        else if (scene_path.empty()) scene_path = a;
+        else throw InputError("command line", "more than one scene given (" + scene_path + ", " + a + ")");
+    }
+    if (scene_path.empty()) throw InputError("command line", std::string("no scene given\n") + usage);
+    json scene = read_scene_file(scene_path);
+    for (const auto& s : sets) apply_override(scene, s);
+    const std::string scene_dir = fs::absolute(scene_path).parent_path().string();
+    Simulation sim(scene, scene_dir);
+    sim.set_quiet(quiet);
+    if (out.empty() && !scene.contains("output")) out = "plab_out/" + fs::path(scene_path).stem().string();
+    if (!out.empty()) sim.set_output_dir(out);
+    try {
+        sim.run();
+    } catch (const RunError& e) {
+        spdlog::error("run stopped: {}", e.what());
+        return 3;
+    }
+    const json s = sim.summary();
+    if (!quiet)
+        spdlog::info("done: {} steps, {:.6g} s simulated, {:.3g} s wall, {:.3g} particle-steps/s, {} contacts{}",
+                     s["steps"].get<std::uint64_t>(), s["simulated_time"].get<double>(), s["wall_seconds"].get<double>(),
+                     s["particle_steps_per_second"].get<double>(), s["contacts"].get<std::size_t>(),
+                     out.empty() ? "" : "; outputs in " + out);
+    return 0;
+}
+
+void describe(const PluginHost& host, const std::string& name) {
+    if (const plab_contact_model_desc* d = host.model(name)) {
+        std::cout << "contact model " << d->name << "  (" << host.library_of_model(name) << ")\n  " << d->doc << "\n"
+                  << "  activity range: " << (d->range_kind == PLAB_RANGE_GAP ? "surface gap <= " : "centre distance <= ")
+                  << "activity_range(properties)\n  stable timestep: " << d->timestep_rule << "\n  properties:\n";
+        for (uint32_t p = 0; p < d->property_count; ++p) {
+            const auto& q = d->properties[p];
+            std::cout << "    " << q.key << "  " << q.name << " [" << q.unit << "], default " << q.default_value
+                      << ", range " << range_text(q) << "\n        " << q.doc << "\n";
+        }
+        std::cout << "  history slots:\n";
+        for (uint32_t h = 0; h < d->history_count; ++h)
+            std::cout << "    " << d->history[h].name << " (default " << d->history[h].default_value << ", "
+                      << (d->history[h].swap_rule == PLAB_SWAP_NEGATE ? "negated" : "kept") << " when ends swap)\n";
+        for (uint32_t f = 0; f < d->fields_read_count; ++f) std::cout << "  reads body field " << d->fields_read[f].name << "\n";
+        return;
+    }
+    if (const plab_pass_desc* p = host.pass(name)) {
+        static const char* phases[] = {"pre-force", "post-force", "integrate"};
+        std::cout << "pass " << p->name << " (" << phases[p->phase] << ", stage " << p->stage << ")\n  " << p->doc << "\n";
+        for (uint32_t f = 0; f < p->field_count; ++f)
+            std::cout << "  field " << p->fields[f].name << " [" << p->fields[f].unit << "]\n";
+        return;
+    }
+    throw InputError("--describe", "no model or pass named '" + name + "' among the plug-ins found");
+}
+
+int cmd_plugins(const std::vector<std::string>& args) {
+    PluginHost host;
+    std::cout << "plug-in search path:\n";
+    for (const auto& d : host.search_dirs()) std::cout << "  " << d << "\n";
+    for (const auto& path : host.discover()) {
+        try {
+            const LoadedLibrary& lib = host.load(path);
+            std::cout << path << "\n";
+            for (const auto& m : lib.models) std::cout << "  model " << m << "\n";
+            for (const auto& p : lib.passes) std::cout << "  pass  " << p << "\n";
+        } catch (const PluginError& e) {
+            std::cout << path << "\n  REFUSED: " << e.what() << "\n";
+        }
+    }
+    if (args.size() == 2 && args[0] == "--describe") describe(host, args[1]);
+    else if (!args.empty()) throw InputError("command line", std::string("plab plugins takes [--describe MODEL]\n") + usage);
+    return 0;
+}
+
+int cmd_validate(const std::vector<std::string>& args) {
+    bool quick = false, all = false;
+    std::vector<std::string> names;
+    for (const auto& a : args) {
+        if (a == "--quick") quick = true;
+        else if (a == "--all") all = true;
+        else if (a == "--list") {
+            for (const auto& c : validation_cases()) std::cout << c.name << "  " << c.description << "\n";
+            return 0;
+        } else names.push_back(a);
+    }
+    if (!all && names.empty()) throw InputError("command line", std::string("name a case, or --all / --list\n") + usage);
+    std::vector<const ValidationCase*> chosen;
+    for (const auto& c : validation_cases())
+        if (all || std::find(names.begin(), names.end(), c.name) != names.end()) chosen.push_back(&c);
+    for (const auto& n : names)
+        if (std::none_of(chosen.begin(), chosen.end(), [&](auto* c) { return c->name == n; })) {
+            std::string known;
+            for (const auto& c : validation_cases()) known += " " + c.name;
+            throw InputError("command line", "unknown validation case '" + n + "'; cases:" + known);
+        }
+    int failed = 0;
+    for (const ValidationCase* c : chosen) {
+        const std::clock_t t0 = std::clock();
+        CaseResult r;
+        std::string crash;
+        try {
+            r = c->run(quick);
+        } catch (const std::exception& e) {
+            crash = e.what();
+            r.error = kInf;
+        }
+        const double cpu = double(std::clock() - t0) / CLOCKS_PER_SEC;
+        std::printf("%-22s %-4s error %.4g (tolerance %.4g, %s)  cpu %.2f s\n", c->name.c_str(),
+                    r.passed() ? "PASS" : "FAIL", r.error, r.tolerance, r.metric.c_str(), cpu);
+        if (!r.details.empty()) std::printf("%s", r.details.c_str());
+        if (!crash.empty()) std::printf("    stopped: %s\n", crash.c_str());
+        failed += !r.passed();
+    }
+    std::printf("%zu passed, %d failed\n", chosen.size() - failed, failed);
+    return failed ? 1 : 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+        std::cout << usage;
+        return args.empty() ? 2 : 0;
+    }
+    const std::string cmd = args[0];
+    args.erase(args.begin());
+    try {
+        if (cmd == "run") return cmd_run(args);
+        if (cmd == "plugins") return cmd_plugins(args);
+        if (cmd == "validate") return cmd_validate(args);
+        std::cerr << "unknown command '" << cmd << "'\n" << usage;
+        return 2;
+    } catch (const InputError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 2;
+    } catch (const PluginError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 1;
+    }
+}

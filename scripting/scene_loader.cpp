@@ -1,0 +1,186 @@
+// Scene → World: plug-ins, bodies (generators), walls, the contact-model
+// assignment table, passes and the timestep. Every check names its JSON path.
+#include "generators.hpp"
+#include "simulation.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+namespace plab {
+
+namespace {
+
+std::string join(const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s;
+}
+
+} // namespace
+
+Simulation::Simulation(const json& scene, const std::string& scene_dir, std::shared_ptr<PluginHost> host)
+    : scene_(scene), scene_dir_(scene_dir), host_(host ? std::move(host) : std::make_shared<PluginHost>()) {
+    load(Node(scene_, "scene"));
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::load(const Node& root) {
+    root.allow_keys({"description", "dimension", "domain", "gravity", "plugins", "bodies", "walls", "contact_models",
+                     "passes", "timestep", "skin", "histories", "output", "commands", "validation"});
+    const int dim = int(root.at("dimension").integer(2, 3));
+    world_ = std::make_unique<World>(dim, host_);
+    if (root.has("domain")) {
+        const Node d = root.at("domain");
+        d.allow_keys({"min", "max"});
+        domain_min_ = d.at("min").vec(dim);
+        domain_max_ = d.at("max").vec(dim);
+        for (int c = 0; c < dim; ++c)
+            if (!(domain_min_[c] < domain_max_[c]))
+                d.at("max").fail("domain max must exceed min in every direction (component " + std::to_string(c) + ")");
+        if (dim == 2) { domain_min_.z() = -kInf; domain_max_.z() = kInf; }
+    }
+    world_->gravity = root.vec_or("gravity", dim, Vec::Zero());
+    if (root.has("skin")) world_->skin = root.at("skin").number(0.0, kInf, false, true);
+    load_plugins(root.has("plugins") ? root.at("plugins") : Node(json::array(), "scene.plugins"));
+    if (root.has("bodies")) load_bodies(root.at("bodies"));
+    if (root.has("walls")) load_walls(root.at("walls"));
+    if (root.has("contact_models")) load_contact_models(root.at("contact_models"));
+    if (root.has("passes")) load_passes(root.at("passes"));
+    load_timestep(root.has("timestep") ? root.at("timestep") : Node(json::object(), "scene.timestep"));
+    if (root.has("histories")) load_histories(root.at("histories"));
+    if (root.has("output")) load_output(root.at("output"));
+    if (root.has("commands")) load_commands(root.at("commands"));
+}
+
+void Simulation::load_plugins(const Node& n) {
+    n.expect_array();
+    for (std::size_t i = 0; i < n.size(); ++i) {
+        const Node p = n.at(i);
+        try {
+            host_->load(host_->resolve(p.string(), scene_dir_));
+        } catch (const PluginError& e) {
+            throw InputError(p.path(), e.what());
+        }
+    }
+}
+
+void Simulation::check_domain(const std::string& where, std::size_t first) const {
+    const Bodies& b = world_->bodies;
+    for (std::size_t i = first; i < b.size(); ++i) {
+        const Vec& p = b.position[i];
+        for (int c = 0; c < world_->dim; ++c)
+            if (p[c] - b.radius[i] < domain_min_[c] || p[c] + b.radius[i] > domain_max_[c]) {
+                std::ostringstream s;
+                s << "ball at " << p.head(world_->dim).transpose() << " (radius " << b.radius[i]
+                  << ") lies outside the domain [" << domain_min_.head(world_->dim).transpose() << "] .. ["
+                  << domain_max_.head(world_->dim).transpose() << "]";
+                throw InputError(where, s.str());
+            }
+    }
+}
+
+void Simulation::load_bodies(const Node& n) {
+    n.expect_array();
+    std::vector<std::pair<Box, std::string>> regions;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+        const Node g = n.at(i);
+        const std::size_t before = world_->bodies.size();
+        const std::optional<Box> region = generate_bodies(g, *world_);
+        if (region) {
+            for (const auto& [other, where] : regions)
+                if (region->overlaps(other, world_->dim))
+                    g.fail("generator region overlaps the region of " + where +
+                           "; balls from the two would overlap — move or shrink one");
+            regions.emplace_back(*region, g.path());
+        }
+        check_domain(g.path(), before);
+    }
+}
+
+void Simulation::load_walls(const Node& n) {
+    n.expect_array();
+    for (std::size_t i = 0; i < n.size(); ++i) generate_wall(n.at(i), *world_);
+}
+
+// Rules apply in order; a later rule overrides an earlier one for the group
+// pairs it names ("*" matches every group).
+void Simulation::load_contact_models(const Node& n) {
+    n.expect_array();
+    World& w = *world_;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+        const Node rule = n.at(i);
+        rule.allow_keys({"groups", "model", "properties"});
+        const Node groups = rule.at("groups");
+        if (!groups.value().is_array() || groups.size() != 2)
+            groups.fail("expected two group names, e.g. [\"grains\", \"walls\"] (\"*\" for any), got " + show(groups.value()));
+        std::vector<int> sides[2];
+        for (int s = 0; s < 2; ++s) {
+            const std::string name = groups.at(s).string();
+            if (name == "*") {
+                for (std::size_t g = 0; g < w.group_names().size(); ++g) sides[s].push_back(int(g));
+            } else {
+                const int g = w.find_group(name);
+                if (g < 0)
+                    groups.at(s).fail("unknown group \"" + name + "\"; groups in this scene: " + join(w.group_names()));
+                sides[s].push_back(g);
+            }
+        }
+        const std::string model = rule.at("model").string();
+        int instance = -1;
+        if (model != "null") {
+            const plab_contact_model_desc* d = host_->model(model);
+            if (!d) {
+                auto names = host_->model_names();
+                rule.at("model").fail("unknown contact model \"" + model + "\"; models loaded by this scene's plugins: " +
+                                      (names.empty() ? std::string("none (list plug-ins under \"plugins\")") : join(names)) +
+                                      ", or \"null\" for no contact");
+            }
+            instance = w.add_instance(model, read_properties(rule, d->properties, d->property_count, "model " + model));
+        } else if (rule.has("properties")) {
+            rule.at("properties").fail("the null model has no properties");
+        }
+        for (int a : sides[0])
+            for (int b : sides[1]) w.assign(a, b, instance);
+    }
+}
+
+void Simulation::load_passes(const Node& n) {
+    n.expect_array();
+    for (std::size_t i = 0; i < n.size(); ++i) {
+        const Node p = n.at(i);
+        p.allow_keys({"name", "properties"});
+        const std::string name = p.at("name").string();
+        const plab_pass_desc* d = host_->pass(name);
+        if (!d) {
+            auto names = host_->pass_names();
+            p.at("name").fail("unknown pass \"" + name + "\"; passes loaded by this scene's plugins: " +
+                              (names.empty() ? std::string("none") : join(names)));
+        }
+        world_->add_pass(name, read_properties(p, d->properties, d->property_count, "pass " + name));
+    }
+}
+
+void Simulation::load_timestep(const Node& n) {
+    n.allow_keys({"fixed", "safety_factor", "allow_unstable"});
+    World& w = *world_;
+    w.safety_factor = n.number_or("safety_factor", 0.8, 0.0, 1.0, true, false);
+    if (!n.has("fixed")) return;
+    w.fixed_dt = n.at("fixed").positive();
+    const bool allow = n.has("allow_unstable") && n.at("allow_unstable").boolean();
+    const StableStep s = w.nominal_timestep();
+    if (w.fixed_dt > s.critical) {
+        std::ostringstream msg;
+        msg << "fixed timestep " << w.fixed_dt << " s is " << w.fixed_dt / s.critical << "x the stable limit "
+            << s.critical << " s (" << s.limited_by << "); valid range (0, " << s.critical
+            << "], or set timestep.allow_unstable = true";
+        if (!allow) n.at("fixed").fail(msg.str());
+        timestep_note_ = "warning: " + msg.str();
+        if (!quiet_) spdlog::warn("{}: {}", n.at("fixed").path(), msg.str());
+    }
+}
+
+} // namespace plab

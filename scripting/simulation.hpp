@@ -1,0 +1,104 @@
+// A JSON scene turned into a World and a command sequence, and run.
+// The scene format is documented in docs/scene-format.md.
+#pragma once
+
+#include "json_reader.hpp"
+
+#include <plab_core/world.hpp>
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace plab {
+
+// Applies "a.b.0.c=value" to a scene: the value is read as JSON when it
+// parses (numbers, arrays, true/false), else as a string. The path must
+// exist up to its last key (a typo is an error, not a new key).
+void apply_override(json& scene, const std::string& assignment);
+json read_scene_file(const std::string& path);
+
+struct HistoryColumn {
+    std::string name;
+    std::function<double(const World&)> sample;
+};
+
+struct Command {
+    enum Kind { cycle, solve_time, solve_ratio, set, output } kind;
+    std::string path;  // for messages
+    double value = 0;  // cycles, time, or ratio
+    long max_cycles = 0;
+    std::function<void(World&)> apply;  // for `set`
+};
+
+struct RunSummary {
+    std::uint64_t steps = 0;
+    double simulated_time = 0, wall_seconds = 0, cpu_seconds = 0;
+    double particle_steps_per_second = 0;
+};
+
+class Simulation {
+public:
+    // `scene_dir` resolves relative plug-in paths; `host` may be shared
+    // between simulations (libraries stay loaded).
+    Simulation(const json& scene, const std::string& scene_dir = ".", std::shared_ptr<PluginHost> host = nullptr);
+    ~Simulation();
+
+    World& world() { return *world_; }
+    const World& world() const { return *world_; }
+    const json& scene() const { return scene_; }
+
+    // Output folder; empty: write nothing (tests).
+    void set_output_dir(const std::string& dir) { out_dir_ = dir; }
+    void set_quiet(bool q) { quiet_ = q; }
+    // Runs every command of the scene in order.
+    void run();
+    // Runs n cycles, sampling histories and writing outputs as configured.
+    void cycle(long n);
+
+    // Recorded histories: column names and rows.
+    const std::vector<HistoryColumn>& history_columns() const { return history_cols_; }
+    const std::vector<std::vector<double>>& history_rows() const { return history_rows_; }
+    std::vector<double> history(const std::string& name) const;
+
+    json summary() const;
+    void write_vtk_snapshot();
+
+private:
+    json scene_;
+    std::string scene_dir_, out_dir_;
+    bool quiet_ = false;
+    std::shared_ptr<PluginHost> host_;
+    std::unique_ptr<World> world_;
+    std::vector<Command> commands_;
+    std::vector<HistoryColumn> history_cols_;
+    std::vector<std::vector<double>> history_rows_;
+    long history_every_ = 0;
+    double vtk_interval_ = 0, next_vtk_time_ = 0;
+    int vtk_frames_ = 0;
+    std::vector<std::pair<double, std::string>> vtk_series_;
+    RunSummary run_;
+    std::string timestep_note_;
+    std::chrono::steady_clock::time_point started_;
+
+    void load(const Node& root);
+    void load_plugins(const Node& n);
+    void load_bodies(const Node& n);
+    void load_walls(const Node& n);
+    void load_contact_models(const Node& n);
+    void load_passes(const Node& n);
+    void load_timestep(const Node& n);
+    void load_histories(const Node& n);
+    void load_output(const Node& n);
+    void load_commands(const Node& n);
+    std::function<void(World&)> load_set(const Node& n);
+    std::vector<int> select(const Node& n, const World& w) const;
+    void after_step();
+    void write_outputs() const;
+    void check_domain(const std::string& where, std::size_t first) const;
+    Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
+};
+
+} // namespace plab

@@ -1,0 +1,39 @@
+// Validation cases: a scene plus a comparison with reference data or an
+// analytical solution, with a stated tolerance. Cases register themselves
+// (PLAB_VALIDATION_CASE) so later issues add theirs without touching the CLI.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace plab {
+
+struct CaseResult {
+    double error = 0;      // the case's error figure (relative unless `metric` says otherwise)
+    double tolerance = 0;  // passes when error <= tolerance
+    std::string metric;    // what `error` measures
+    std::string details;   // per-sub-case lines for the report
+    bool passed() const { return error <= tolerance; }
+};
+
+struct ValidationCase {
+    std::string name, description;
+    std::function<CaseResult(bool quick)> run;
+};
+
+std::vector<ValidationCase>& validation_cases();
+bool register_case(ValidationCase c);
+
+// Directory of the published reference data (shared/reference beside the
+// repository, or PLAB_REFERENCE_DIR).
+std::string reference_dir();
+// Directory of the repository's examples (PLAB_EXAMPLES_DIR at build time).
+std::string examples_dir();
+
+} // namespace plab
+
+#define PLAB_CAT2(a, b) a##b
+#define PLAB_CAT(a, b) PLAB_CAT2(a, b)
+#define PLAB_VALIDATION_CASE(name, description, ...) \
+    static const bool PLAB_CAT(plab_case_, __LINE__) = ::plab::register_case({name, description, __VA_ARGS__})

@@ -1,0 +1,138 @@
+// Walls from a scene: segment / polyline / box (2D and 3D), plane,
+// rectangle and triangle meshes (3D). Each wall moves rigidly.
+#include "generators.hpp"
+
+namespace plab {
+
+namespace {
+
+void add_segment(World& w, int wall, const Vec& a, const Vec& b) {
+    Facet f;
+    f.kind = FacetKind::segment;
+    f.a = a;
+    f.b = b;
+    w.walls.add_facet(wall, f);
+}
+
+void add_triangle(World& w, int wall, const Vec& a, const Vec& b, const Vec& c) {
+    Facet f;
+    f.kind = FacetKind::triangle;
+    f.a = a;
+    f.b = b;
+    f.c = c;
+    w.walls.add_facet(wall, f);
+}
+
+void add_rectangle(World& w, int wall, const Vec& a, const Vec& b, const Vec& c, const Vec& d) {
+    add_triangle(w, wall, a, b, c);
+    add_triangle(w, wall, a, c, d);
+}
+
+void require_dim(const Node& n, const World& w, int dim, const std::string& type) {
+    if (w.dim != dim) n.at("type").fail("wall type \"" + type + "\" needs a " + std::to_string(dim) + "D scene");
+}
+
+// A box of walls; `open` names faces left out ("top" = +y in 2D, +z in 3D).
+void box(const Node& n, World& w, int wall) {
+    const Vec lo = n.at("min").vec(w.dim), hi = n.at("max").vec(w.dim);
+    for (int c = 0; c < w.dim; ++c)
+        if (!(lo[c] < hi[c])) n.at("max").fail("box max must exceed min in every direction");
+    std::vector<std::string> open;
+    if (n.has("open")) {
+        const Node o = n.at("open");
+        o.expect_array();
+        for (std::size_t i = 0; i < o.size(); ++i)
+            open.push_back(o.at(i).choice({"left", "right", "bottom", "top", "front", "back"}));
+    }
+    auto is_open = [&](const char* face) { return std::find(open.begin(), open.end(), face) != open.end(); };
+    if (w.dim == 2) {
+        const Vec p00(lo.x(), lo.y(), 0), p10(hi.x(), lo.y(), 0), p11(hi.x(), hi.y(), 0), p01(lo.x(), hi.y(), 0);
+        if (!is_open("bottom")) add_segment(w, wall, p00, p10);
+        if (!is_open("right")) add_segment(w, wall, p10, p11);
+        if (!is_open("top")) add_segment(w, wall, p11, p01);
+        if (!is_open("left")) add_segment(w, wall, p01, p00);
+        return;
+    }
+    auto corner = [&](int i, int j, int k) { return Vec(i ? hi.x() : lo.x(), j ? hi.y() : lo.y(), k ? hi.z() : lo.z()); };
+    if (!is_open("left")) add_rectangle(w, wall, corner(0, 0, 0), corner(0, 1, 0), corner(0, 1, 1), corner(0, 0, 1));
+    if (!is_open("right")) add_rectangle(w, wall, corner(1, 0, 0), corner(1, 1, 0), corner(1, 1, 1), corner(1, 0, 1));
+    if (!is_open("front")) add_rectangle(w, wall, corner(0, 0, 0), corner(1, 0, 0), corner(1, 0, 1), corner(0, 0, 1));
+    if (!is_open("back")) add_rectangle(w, wall, corner(0, 1, 0), corner(1, 1, 0), corner(1, 1, 1), corner(0, 1, 1));
+    if (!is_open("bottom")) add_rectangle(w, wall, corner(0, 0, 0), corner(1, 0, 0), corner(1, 1, 0), corner(0, 1, 0));
+    if (!is_open("top")) add_rectangle(w, wall, corner(0, 0, 1), corner(1, 0, 1), corner(1, 1, 1), corner(0, 1, 1));
+}
+
+} // namespace
+
+void generate_wall(const Node& n, World& w) {
+    const std::string type =
+        n.at("type").choice({"segment", "polyline", "box", "plane", "rectangle", "triangles"});
+    std::vector<const char*> keys = {"type", "name", "group", "velocity", "angular_velocity", "centre"};
+    if (type == "segment") keys.insert(keys.end(), {"from", "to"});
+    if (type == "polyline") keys.insert(keys.end(), {"points", "closed"});
+    if (type == "box") keys.insert(keys.end(), {"min", "max", "open"});
+    if (type == "plane") keys.insert(keys.end(), {"point", "normal"});
+    if (type == "rectangle") keys.insert(keys.end(), {"corners"});
+    if (type == "triangles") keys.insert(keys.end(), {"vertices", "triangles"});
+    // allow_keys takes an initializer list; check by hand for this variable set
+    n.expect_object();
+    for (auto it = n.value().begin(); it != n.value().end(); ++it) {
+        if (std::find_if(keys.begin(), keys.end(), [&](const char* k) { return it.key() == k; }) != keys.end()) continue;
+        std::string list;
+        for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+        throw InputError(n.path() + "." + it.key(), "unknown key '" + it.key() + "' for a " + type + " wall; allowed: " + list);
+    }
+    Wall wall;
+    wall.name = n.string_or("name", "wall" + std::to_string(w.walls.walls.size()));
+    for (const Wall& other : w.walls.walls)
+        if (other.name == wall.name) n.at("name").fail("a wall named \"" + wall.name + "\" already exists");
+    wall.group = w.group_index(n.string_or("group", "walls"));
+    wall.velocity = n.vec_or("velocity", w.dim, Vec::Zero());
+    if (n.has("angular_velocity")) {
+        if (w.dim == 2) wall.angular_velocity.z() = n.at("angular_velocity").number();
+        else wall.angular_velocity = n.at("angular_velocity").vec(3);
+    }
+    wall.centre = n.vec_or("centre", w.dim, Vec::Zero());
+    const int id = w.walls.add_wall(wall);
+    if (type == "segment") {
+        require_dim(n, w, 2, type);
+        add_segment(w, id, n.at("from").vec(2), n.at("to").vec(2));
+    } else if (type == "polyline") {
+        require_dim(n, w, 2, type);
+        const Node pts = n.at("points");
+        pts.expect_array();
+        if (pts.size() < 2) pts.fail("a polyline needs at least 2 points");
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i) add_segment(w, id, pts.at(i).vec(2), pts.at(i + 1).vec(2));
+        if (n.has("closed") && n.at("closed").boolean()) add_segment(w, id, pts.at(pts.size() - 1).vec(2), pts.at(0).vec(2));
+    } else if (type == "box") {
+        box(n, w, id);
+    } else if (type == "plane") {
+        Facet f;
+        f.kind = FacetKind::plane;
+        f.a = n.at("point").vec(w.dim);
+        const Vec normal = n.at("normal").vec(w.dim);
+        if (normal.norm() == 0) n.at("normal").fail("normal must not be zero");
+        f.b = normal.normalized();
+        w.walls.add_facet(id, f);
+    } else if (type == "rectangle") {
+        require_dim(n, w, 3, type);
+        const Node c = n.at("corners");
+        if (!c.value().is_array() || c.size() != 4) c.fail("expected 4 corners, in order around the rectangle");
+        add_rectangle(w, id, c.at(0).vec(3), c.at(1).vec(3), c.at(2).vec(3), c.at(3).vec(3));
+    } else {
+        require_dim(n, w, 3, type);
+        const Node v = n.at("vertices"), t = n.at("triangles");
+        v.expect_array();
+        t.expect_array();
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            const Node tri = t.at(i);
+            if (!tri.value().is_array() || tri.size() != 3) tri.fail("expected 3 vertex indices");
+            Vec p[3];
+            for (int k = 0; k < 3; ++k) p[k] = v.at(std::size_t(tri.at(k).integer(0, long(v.size()) - 1))).vec(3);
+            add_triangle(w, id, p[0], p[1], p[2]);
+        }
+    }
+    w.mark_dirty();
+}
+
+} // namespace plab
