@@ -245,7 +245,7 @@ void Simulation::load_commands(const Node& n) {
         } else if (c.has("solve")) {
             const Node s = c.at("solve");
             s.allow_keys({"time", "ratio", "max_cycles"});
-            if (s.has("time") == s.has("ratio")) s.fail("solve needs exactly one of: time (s), ratio");
+            if (s.has("time") == s.has("ratio")) s.fail("solve needs exactly one of: time (s), ratio; got " + show(s.value()));
             if (s.has("time")) {
                 cmd.kind = Command::solve_time;
                 cmd.value = s.at("time").positive();

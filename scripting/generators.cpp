@@ -120,12 +120,27 @@ Box lattice(const Node& n, World& w) {
     return box;
 }
 
+// Balls cannot fill more than the box: refuse at once instead of spending
+// 1000 x count rejected attempts on an impossible fill.
+void check_fill_possible(const Node& count_node, long count, double radius, const Box& box, int dim) {
+    const double ball_volume = dim == 2 ? M_PI * radius * radius : 4.0 / 3.0 * M_PI * std::pow(radius, 3);
+    double box_volume = 1;
+    for (int c = 0; c < dim; ++c) box_volume *= box.hi[c] - box.lo[c];
+    if (double(count) * ball_volume <= box_volume) return;
+    std::ostringstream s;
+    s << "value " << count << " cannot fit: " << count << " balls of radius at least " << radius << " occupy "
+      << double(count) * ball_volume << ", more than the box's " << box_volume << "; the valid range is at most [1, "
+      << long(box_volume / ball_volume) << "]";
+    count_node.fail(s.str());
+}
+
 // Random non-overlapping fill by rejection on a background grid.
 Box random_fill(const Node& n, World& w) {
     n.allow_keys({"type", "group", "box", "radius", "density", "count", "seed", "fix", "local_damping", "max_attempts"});
     const Material m = read_material(n, w, true);
     const Box box = read_box(n.at("box"), w.dim);
     const long count = n.at("count").integer(1, 100000000);
+    check_fill_possible(n.at("count"), count, m.radius_lo, box, w.dim);
     Rng rng(std::uint64_t(n.has("seed") ? n.at("seed").integer(0, 1L << 40) : 1));
     const long max_attempts = n.has("max_attempts") ? n.at("max_attempts").integer(1, 1L << 40) : 1000 * count;
     std::vector<Vec> placed;

@@ -232,14 +232,19 @@ void apply_override(json& scene, const std::string& assignment) {
         if (node->is_array()) {
             char* end = nullptr;
             const long idx = std::strtol(k.c_str(), &end, 10);
-            if (*end || idx < 0 || std::size_t(idx) >= node->size())
+            // strtol reads "" as 0: an empty segment ("a..b") must not mean index 0
+            if (k.empty() || *end || idx < 0 || std::size_t(idx) >= node->size())
                 throw InputError(walked + "." + k, "--set " + path + ": index \"" + k + "\" is not within [0, " +
                                                        std::to_string(node->size()) + ")");
             node = &(*node)[std::size_t(idx)];
         } else if (node->is_object()) {
             // the last key may be new (an optional property not in the file yet)
-            if (!node->contains(k) && !last)
-                throw InputError(walked + "." + k, "--set " + path + ": no key \"" + k + "\" in the scene");
+            if (!node->contains(k) && !last) {
+                std::string keys_here;
+                for (auto it = node->begin(); it != node->end(); ++it) keys_here += (keys_here.empty() ? "" : ", ") + it.key();
+                throw InputError(walked + "." + k, "--set " + path + ": no key \"" + k + "\" in the scene; keys here: " +
+                                                       (keys_here.empty() ? "none" : keys_here));
+            }
             node = &(*node)[k];
         } else {
             throw InputError(walked, "--set " + path + ": cannot descend into " + show(*node));

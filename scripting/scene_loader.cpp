@@ -19,6 +19,19 @@ std::string join(const std::vector<std::string>& v) {
     return s;
 }
 
+// Names usable in "plugins" for the libraries in the search path
+// ("plab_linear.so" -> "linear").
+std::string plugin_names(const PluginHost& host) {
+    std::vector<std::string> names;
+    for (const auto& path : host.discover()) {
+        std::string stem = std::filesystem::path(path).stem().string();
+        for (const std::string prefix : {"plab_", "lib"})
+            if (stem.rfind(prefix, 0) == 0) { stem = stem.substr(prefix.size()); break; }
+        names.push_back(stem);
+    }
+    return names.empty() ? std::string("none") : join(names);
+}
+
 } // namespace
 
 Simulation::Simulation(const json& scene, const std::string& scene_dir, std::shared_ptr<PluginHost> host)
@@ -60,8 +73,16 @@ void Simulation::load_plugins(const Node& n) {
     n.expect_array();
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node p = n.at(i);
+        const std::string name = p.string();
+        std::string file;
         try {
-            host_->load(host_->resolve(p.string(), scene_dir_));
+            file = host_->resolve(name, scene_dir_);
+        } catch (const PluginError& e) {
+            // a misspelt name is the usual cause: show the names that would work
+            throw InputError(p.path(), std::string(e.what()) + "; plug-ins found: " + plugin_names(*host_));
+        }
+        try {
+            host_->load(file);
         } catch (const PluginError& e) {
             throw InputError(p.path(), e.what());
         }
@@ -92,9 +113,14 @@ void Simulation::load_bodies(const Node& n) {
         const std::optional<Box> region = generate_bodies(g, *world_);
         if (region) {
             for (const auto& [other, where] : regions)
-                if (region->overlaps(other, world_->dim))
-                    g.fail("generator region overlaps the region of " + where +
-                           "; balls from the two would overlap — move or shrink one");
+                if (region->overlaps(other, world_->dim)) {
+                    const int d = world_->dim;
+                    std::ostringstream s;
+                    s << "generator region [" << region->lo.head(d).transpose() << "] .. [" << region->hi.head(d).transpose()
+                      << "] overlaps the region [" << other.lo.head(d).transpose() << "] .. [" << other.hi.head(d).transpose()
+                      << "] of " << where << "; balls from the two would overlap — move or shrink one";
+                    g.fail(s.str());
+                }
             regions.emplace_back(*region, g.path());
         }
         check_domain(g.path(), before);
@@ -168,10 +194,10 @@ void Simulation::load_timestep(const Node& n) {
     n.allow_keys({"fixed", "safety_factor", "allow_unstable"});
     World& w = *world_;
     w.safety_factor = n.number_or("safety_factor", 0.8, 0.0, 1.0, true, false);
+    const StableStep s = w.nominal_timestep();  // also refuses a model that reports no stable step
     if (!n.has("fixed")) return;
     w.fixed_dt = n.at("fixed").positive();
     const bool allow = n.has("allow_unstable") && n.at("allow_unstable").boolean();
-    const StableStep s = w.nominal_timestep();
     if (w.fixed_dt > s.critical) {
         std::ostringstream msg;
         msg << "fixed timestep " << w.fixed_dt << " s is " << w.fixed_dt / s.critical << "x the stable limit "

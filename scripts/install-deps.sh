@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the Debian packages ParticleLab builds with, if any is missing.
+# Needs root (or sudo) only when something must be installed.
+set -euo pipefail
+packages=(build-essential cmake pkg-config libeigen3-dev libboost-dev libboost-filesystem-dev
+          nlohmann-json3-dev libspdlog-dev catch2)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "installing: ${missing[*]}"
+sudo_cmd=()
+[ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null

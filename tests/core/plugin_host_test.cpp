@@ -1,0 +1,109 @@
+// The plug-in host refuses bad libraries with messages that say what to fix
+// (issue: kernel acceptance 7; issue: SDK, errors for plug-in authors).
+#include "simulation.hpp"
+
+#include <plab_core/error.hpp>
+#include <plab_core/plugin_host.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+
+using namespace plab;
+using Catch::Matchers::Contains;
+
+namespace {
+std::string test_plugin(const std::string& name) { return std::string(PLAB_TEST_PLUGIN_DIR) + "/" + name + ".so"; }
+
+std::string refusal(PluginHost& host, const std::string& name) {
+    try {
+        host.load(test_plugin(name));
+    } catch (const PluginError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+json two_balls(const std::string& model) {
+    return {{"dimension", 2},
+            {"plugins", {"linear", test_plugin(model)}},
+            {"bodies", {{{"type", "ball"}, {"position", {0, 0}}, {"radius", 0.01}, {"density", 1000}},
+                        {{"type", "ball"}, {"position", {0.0199, 0}}, {"radius", 0.01}, {"density", 1000}}}},
+            {"contact_models", {{{"groups", {"*", "*"}}, {"model", model}}}}};
+}
+} // namespace
+
+TEST_CASE("the host finds the linear model and the coordination pass in its build folder", "[host]") {
+    PluginHost host;
+    host.load(host.resolve("linear"));
+    host.load(host.resolve("coordination_number"));
+    REQUIRE(host.model("linear") != nullptr);
+    REQUIRE(host.pass("coordination_number") != nullptr);
+    CHECK(host.model("linear")->property_count == 7);
+}
+
+TEST_CASE("a library built for another ABI version is refused, naming the file and both versions", "[host]") {
+    PluginHost host;
+    const std::string msg = refusal(host, "wrong_abi");
+    CHECK_THAT(msg, Contains("wrong_abi.so"));
+    CHECK_THAT(msg, Contains("ABI version 99"));
+    CHECK_THAT(msg, Contains("speaks version 1"));
+    CHECK_THAT(msg, Contains("rebuild"));
+}
+
+TEST_CASE("a library without plab_plugin_init is refused and told how to define it", "[host]") {
+    PluginHost host;
+    const std::string msg = refusal(host, "missing_init");
+    CHECK_THAT(msg, Contains("missing_init.so"));
+    CHECK_THAT(msg, Contains("plab_plugin_init"));
+    CHECK_THAT(msg, Contains("PLAB_PLUGIN"));
+}
+
+TEST_CASE("a second model named linear is refused, naming the library that owns the name", "[host]") {
+    PluginHost host;
+    host.load(host.resolve("linear"));
+    const std::string msg = refusal(host, "duplicate_linear");
+    CHECK_THAT(msg, Contains("duplicate_linear.so"));
+    CHECK_THAT(msg, Contains("'linear' is already registered by"));
+    CHECK_THAT(msg, Contains("plab_linear.so"));
+    CHECK(host.model("linear") != nullptr);  // the first one is untouched
+}
+
+TEST_CASE("a property without a unit or with a default outside its range is refused", "[host]") {
+    PluginHost host;
+    const std::string msg = refusal(host, "no_unit");
+    CHECK_THAT(msg, Contains("property k has no SI unit"));
+    CHECK_THAT(msg, Contains("default -1 is outside its range [0, 1e+12]"));
+    CHECK(host.model("no_unit") == nullptr);
+}
+
+TEST_CASE("a model that reports no stable timestep is refused when the scene is loaded", "[host]") {
+    CHECK_THROWS_WITH(Simulation(two_balls("no_timestep")), Contains("reports no stable timestep") &&
+                                                               Contains("set_stiffness() or set_dt_limit()"));
+}
+
+TEST_CASE("a model returning NaN stops the run with a diagnostic naming the ball and the step", "[host]") {
+    json scene = two_balls("nan_model");
+    scene["bodies"][0]["velocity"] = {1.0, 0.0};
+    Simulation sim(scene);
+    sim.set_quiet(true);
+    CHECK_THROWS_WITH(sim.cycle(20000), Contains("non-finite state of ball id") && Contains("at step") &&
+                                           Contains("contact model returned NaN"));
+}
+
+TEST_CASE("an unknown model name lists the models that are available", "[host]") {
+    CHECK_THROWS_WITH(Simulation(two_balls("no_such_model")), Contains("not found"));
+    json scene = two_balls("duplicate_linear");
+    scene["plugins"] = {"linear"};
+    scene["contact_models"][0]["model"] = "lineer";
+    CHECK_THROWS_WITH(Simulation(scene), Contains("unknown contact model \"lineer\"") && Contains("linear") &&
+                                            Contains("scene.contact_models[0].model"));
+}
+
+TEST_CASE("PLAB_PLUGIN_PATH folders are searched before the build folder", "[host]") {
+    setenv("PLAB_PLUGIN_PATH", PLAB_TEST_PLUGIN_DIR, 1);
+    PluginHost host;
+    unsetenv("PLAB_PLUGIN_PATH");
+    CHECK(host.search_dirs().front() == PLAB_TEST_PLUGIN_DIR);
+    CHECK_THAT(host.resolve("nan_model"), Contains("test_plugins/nan_model.so"));
+}

@@ -1,0 +1,50 @@
+// Physics of the kernel + linear model against analytical solutions
+// (issue: kernel, acceptance 1–4). Same measurements as `plab validate`.
+#include <cases/dem_cases.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace plab::cases;
+
+TEST_CASE("leapfrog free fall matches x0 + v0 t + g t^2/2 to 1e-10 relative", "[physics]") {
+    for (int dim : {2, 3}) CHECK(free_fall_error(dim, 1e-3, 2000) < 1e-10);
+}
+
+TEST_CASE("normal impact: restitution within 0.5 % and contact time within 1 % of the damped oscillator",
+          "[physics]") {
+    for (int dim : {2, 3})
+        for (bool wall : {false, true})
+            for (double beta : {0.0, 0.05, 0.2, 0.5}) {
+                INFO("dim " << dim << (wall ? " wall" : " ball") << " beta " << beta);
+                const Impact im = normal_impact(dim, wall, beta);
+                CHECK(im.restitution == Approx(im.expected_restitution).epsilon(0.005));
+                CHECK(im.duration == Approx(im.expected_duration).epsilon(0.01));
+            }
+}
+
+TEST_CASE("no-tension dashpot mode gives a higher restitution than the full-dashpot formula", "[physics]") {
+    // The full dashpot pulls the ball back as it leaves; clipping the total
+    // normal force at zero removes that pull, so e exceeds exp(-βπ/√(1-β²)).
+    const Impact full = normal_impact(2, true, 0.5, 0), clipped = normal_impact(2, true, 0.5, 2);
+    CHECK(clipped.restitution > full.restitution * 1.2);
+    CHECK(clipped.duration < full.duration);
+}
+
+TEST_CASE("a sliding disc ends rolling at 2/3 and a sphere at 5/7 of the launch speed", "[physics]") {
+    CHECK(rolling_speed_ratio(2) == Approx(2.0 / 3.0).epsilon(0.01));
+    CHECK(rolling_speed_ratio(3) == Approx(5.0 / 7.0).epsilon(0.01));
+}
+
+TEST_CASE("elastic packed balls conserve energy and the leapfrog error is second order", "[physics]") {
+    for (int dim : {2, 3}) {
+        INFO("dim " << dim);
+        const EnergyRecord coarse = energy_drift(dim, 0.1, 20000, true);
+        const EnergyRecord fine = energy_drift(dim, 0.05, 40000, true);
+        CHECK(coarse.drift < 1e-4);
+        const double ratio = coarse.max_fluctuation / fine.max_fluctuation;
+        CHECK(ratio > 3.5);
+        CHECK(ratio < 4.5);
+    }
+}
