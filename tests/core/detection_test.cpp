@@ -4,6 +4,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <map>
+
 using namespace plab;
 
 namespace {
@@ -112,4 +116,36 @@ TEST_CASE("the coordination-number pass counts the contacts of each ball", "[det
         if (walls.active[k]) expected[walls.end1[k]] += 1;
     CHECK(w.field(field) == expected);
     CHECK(*std::max_element(expected.begin(), expected.end()) == 6);
+}
+
+TEST_CASE("a contact model reads body fields and accumulates into them through its batch", "[detection][fields]") {
+    json scene = pile(2);
+    scene["plugins"].push_back(std::string(PLAB_TEST_PLUGIN_DIR) + "/field_probe.so");
+    scene["contact_models"] = {{{"groups", {"*", "*"}}, {"model", "field_probe"}, {"properties", {{"k", 1e4}}}}};
+    Simulation sim(scene);
+    sim.set_quiet(true);
+    World& w = sim.world();
+    sim.cycle(2000);
+    const int value = w.field_index("probe_value"), sum = w.field_index("probe_sum");
+    REQUIRE(value >= 0);
+    REQUIRE(sum >= 0);
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) w.field(value)[i] = double(i);
+    sim.cycle(1);
+    std::vector<double> expected(w.bodies.size(), 0.0);
+    const ContactSet& s = w.instances()[0]->balls;
+    for (std::size_t k = 0; k < s.size(); ++k)
+        if (s.active[k]) {
+            expected[s.end1[k]] += s.end2[k];
+            expected[s.end2[k]] += s.end1[k];
+        }
+    // a ball touching a wall gets NaN: reading a wall end's body field is loud, not silently wrong
+    const ContactSet& wl = w.instances()[0]->walls;
+    for (std::size_t k = 0; k < wl.size(); ++k)
+        if (wl.active[k]) expected[wl.end1[k]] = std::nan("");
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        INFO("ball " << i);
+        if (std::isnan(expected[i])) CHECK(std::isnan(w.field(sum)[i]));
+        else CHECK(w.field(sum)[i] == expected[i]);
+    }
+    CHECK(std::count_if(expected.begin(), expected.end(), [](double x) { return x > 0; }) > 10);
 }

@@ -96,7 +96,8 @@ typedef struct plab_contact_batch {
     const double* eff_radius;       /* r1 r2/(r1+r2), m */
 
     /* per-body field columns the model declared in `fields_read`, in that
-     * order, indexed by body index (end1[k] / end2[k]) */
+     * order, indexed by body index (end1[k] / end2[k]); when end2_is_wall,
+     * end2[k] is a facet index and must not index a body column */
     const double* const* body_fields;
 
     /* in/out: history rows, history_stride doubles per contact */

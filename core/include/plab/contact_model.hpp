@@ -70,9 +70,12 @@ public:
         history(first_slot) = v.x; history(first_slot + 1) = v.y; history(first_slot + 2) = v.z;
     }
 
-    // body fields declared in `fields_read`, by position in that list
+    // body fields declared in `fields_read`, by position in that list; a wall
+    // end has no body fields, so field2 of a ball–wall contact is NaN
     double field1(int f) const { return b_.body_fields[f][b_.end1[k_]]; }
-    double field2(int f) const { return b_.body_fields[f][b_.end2[k_]]; }
+    double field2(int f) const {
+        return b_.end2_is_wall ? std::numeric_limits<double>::quiet_NaN() : b_.body_fields[f][b_.end2[k_]];
+    }
     void accumulate1(int f, double v) const { b_.accumulate1[f][k_] += v; }
     void accumulate2(int f, double v) const { b_.accumulate2[f][k_] += v; }
 
