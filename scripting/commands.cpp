@@ -22,6 +22,20 @@ int component(const Node& n, const std::string& c) {
 
 double pick(const Vec& v, int c) { return c == 3 ? v.norm() : v[c]; }
 
+// "; groups in this scene: a, b" / "; walls in this scene: ..." for messages
+// about a misspelt name.
+std::string listed(const char* what, const std::vector<std::string>& names) {
+    std::string s;
+    for (const auto& x : names) s += (s.empty() ? "" : ", ") + x;
+    return std::string("; ") + what + " in this scene: " + (s.empty() ? "none" : s);
+}
+
+std::vector<std::string> wall_names(const World& w) {
+    std::vector<std::string> names;
+    for (const Wall& wall : w.walls.walls) names.push_back(wall.name);
+    return names;
+}
+
 std::vector<std::string> split(const std::string& s, char sep) {
     std::vector<std::string> out;
     std::string cur;
@@ -85,7 +99,7 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
     if (parts[0] == "group" && parts.size() == 4 && vec_name) {
         const std::string g = n.at("group").string();
         const int group = w.find_group(g);
-        if (group < 0) n.at("group").fail("unknown group \"" + g + "\"");
+        if (group < 0) n.at("group").fail("unknown group \"" + g + "\"" + listed("groups", w.group_names()));
         const std::string op = parts[1], which = parts[2];
         if (op != "max" && op != "min" && op != "mean") qn.fail("unknown reduction \"" + op + "\"; use max, min or mean");
         const int c = component(qn, parts[3]);
@@ -107,7 +121,7 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
         int wall = -1;
         for (std::size_t i = 0; i < w.walls.walls.size(); ++i)
             if (w.walls.walls[i].name == name) wall = int(i);
-        if (wall < 0) n.at("wall").fail("unknown wall \"" + name + "\"");
+        if (wall < 0) n.at("wall").fail("unknown wall \"" + name + "\"" + listed("walls", wall_names(w)));
         const bool force = parts[1] == "force";
         const int c = component(qn, parts[2]);
         return [wall, force, c](const World& x) {
@@ -155,7 +169,7 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
         int wall = -1;
         for (std::size_t i = 0; i < world_->walls.walls.size(); ++i)
             if (world_->walls.walls[i].name == name) wall = int(i);
-        if (wall < 0) n.at("wall").fail("unknown wall \"" + name + "\"");
+        if (wall < 0) n.at("wall").fail("unknown wall \"" + name + "\"" + listed("walls", wall_names(*world_)));
         for (const char* k : {"group", "id", "region", "fix", "free", "applied_force", "local_damping"})
             if (n.has(k)) n.at(k).fail(std::string("'") + k + "' does not apply to a wall (set velocity or angular_velocity)");
         if (n.has("velocity")) {
@@ -209,7 +223,8 @@ std::vector<int> Simulation::select(const Node& n, const World& w) const {
     int group = -1;
     if (n.has("group")) {
         group = w.find_group(n.at("group").string());
-        if (group < 0) n.at("group").fail("unknown group \"" + n.at("group").string() + "\"");
+        if (group < 0)
+            n.at("group").fail("unknown group \"" + n.at("group").string() + "\"" + listed("groups", w.group_names()));
     }
     long id = -1;
     if (n.has("id")) id = n.at("id").integer(0, long(w.bodies.next_id) - 1);
@@ -229,7 +244,13 @@ std::vector<int> Simulation::select(const Node& n, const World& w) const {
         if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
         sel.push_back(int(i));
     }
-    if (sel.empty()) n.fail("selects no ball");
+    if (sel.empty()) {
+        json criteria = json::object();  // only what selects, not what is set
+        for (const char* k : {"group", "id", "region"})
+            if (n.has(k)) criteria[k] = n.value()[k];
+        n.fail("selects no ball: none of the " + std::to_string(w.bodies.size()) + " balls matches " + show(criteria) +
+               " (regions select by the positions at load time)");
+    }
     return sel;
 }
 
@@ -245,7 +266,8 @@ void Simulation::load_commands(const Node& n) {
         } else if (c.has("solve")) {
             const Node s = c.at("solve");
             s.allow_keys({"time", "ratio", "max_cycles"});
-            if (s.has("time") == s.has("ratio")) s.fail("solve needs exactly one of: time (s), ratio; got " + show(s.value()));
+            if (s.has("time") == s.has("ratio"))
+                s.fail("solve needs exactly one of: time (s), ratio; got " + show(s.value()));
             if (s.has("time")) {
                 cmd.kind = Command::solve_time;
                 cmd.value = s.at("time").positive();

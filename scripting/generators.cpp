@@ -22,7 +22,7 @@ Material read_material(const Node& n, World& w, bool radius_range) {
         if (r.size() != 2) r.fail("expected a radius or a range [min, max], got " + show(r.value()));
         m.radius_lo = r.at(0).positive();
         m.radius_hi = r.at(1).positive();
-        if (m.radius_hi < m.radius_lo) r.fail("radius range [min, max] has max < min");
+        if (m.radius_hi < m.radius_lo) r.fail("radius range [min, max] has max < min, got " + show(r.value()));
     } else {
         m.radius_lo = m.radius_hi = r.positive();
     }
@@ -116,7 +116,12 @@ Box lattice(const Node& n, World& w) {
             }
         }
     }
-    if (count == 0) n.at("box").fail("box is too small for one ball of radius " + std::to_string(r));
+    if (count == 0) {
+        std::ostringstream s;
+        s << "box [" << box.lo.head(w.dim).transpose() << "] .. [" << box.hi.head(w.dim).transpose()
+          << "] is too small for one ball of radius " << r << " (needs at least " << 2 * r << " in every direction)";
+        n.at("box").fail(s.str());
+    }
     return box;
 }
 
@@ -228,12 +233,13 @@ std::vector<double> read_properties(const Node& owner, const plab_property_desc*
             for (uint32_t q = 0; q < count; ++q) known += (known.empty() ? "" : ", ") + std::string(props[q].key);
             v.fail("unknown property '" + it.key() + "' of " + what + "; its properties: " + (known.empty() ? "none" : known));
         }
-        if (!it->is_number()) v.fail("expected a number (" + std::string(props[p].unit) + "), got " + show(*it));
+        // dimensionless properties have the unit "1": leave it out of messages
+        const std::string unit = std::string(props[p].unit) == "1" ? "" : " " + std::string(props[p].unit);
+        if (!it->is_number()) v.fail("expected a number in " + range_text(props[p]) + unit + ", got " + show(*it));
         const double x = it->get<double>();
         if (!in_range(props[p], x)) {
             std::ostringstream s;
-            s << "value " << x << " of " << props[p].name << " is outside the valid range " << range_text(props[p]) << " "
-              << props[p].unit;
+            s << "value " << x << " of " << props[p].name << " is outside the valid range " << range_text(props[p]) << unit;
             v.fail(s.str());
         }
         values[p] = x;

@@ -201,9 +201,9 @@ void Simulation::load_timestep(const Node& n) {
     if (w.fixed_dt > s.critical) {
         std::ostringstream msg;
         msg << "fixed timestep " << w.fixed_dt << " s is " << w.fixed_dt / s.critical << "x the stable limit "
-            << s.critical << " s (" << s.limited_by << "); valid range (0, " << s.critical
-            << "], or set timestep.allow_unstable = true";
-        if (!allow) n.at("fixed").fail(msg.str());
+            << s.critical << " s (" << s.limited_by << "); valid range (0, " << s.critical << "]";
+        // the hint to allow it only makes sense while it is refused
+        if (!allow) n.at("fixed").fail(msg.str() + ", or set timestep.allow_unstable = true");
         timestep_note_ = "warning: " + msg.str();
         if (!quiet_) spdlog::warn("{}: {}", n.at("fixed").path(), msg.str());
     }
