@@ -6,6 +6,8 @@ function(plab_add_plugin name)
   target_link_libraries(plab_${name} PRIVATE plab::api)
   set_target_properties(plab_${name} PROPERTIES PREFIX "" OUTPUT_NAME plab_${name}
     LIBRARY_OUTPUT_DIRECTORY ${PLAB_PLUGIN_OUTPUT_DIR})
+  # `plab` depends on every in-tree plug-in (see scripting/CMakeLists.txt)
+  set_property(GLOBAL APPEND PROPERTY PLAB_IN_TREE_PLUGINS plab_${name})
 endfunction()
 
 function(plab_add_contact_model name)

@@ -183,35 +183,41 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
             actions.push_back([wall, om](World& w) { w.walls.walls[wall].angular_velocity = om; });
         }
     } else if (n.has("group") || n.has("id") || n.has("region")) {
-        const std::vector<int> sel = select(n, *world_);
+        // the balls are chosen when the command runs (a region selects by the positions then)
+        auto selector = select(n, *world_);
+        std::vector<std::function<void(World&, const std::vector<int>&)>> on_balls;
         if (n.has("velocity")) {
             const Vec v = n.at("velocity").vec(dim);
-            actions.push_back([sel, v](World& w) { for (int i : sel) w.bodies.velocity[i] = v; });
+            on_balls.push_back([v](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.velocity[i] = v; });
         }
         if (n.has("angular_velocity")) {
             Vec om = Vec::Zero();
             if (dim == 2) om.z() = n.at("angular_velocity").number();
             else om = n.at("angular_velocity").vec(3);
-            actions.push_back([sel, om](World& w) { for (int i : sel) w.bodies.angular_velocity[i] = om; });
+            on_balls.push_back([om](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.angular_velocity[i] = om; });
         }
         if (n.has("fix")) {
             const std::uint8_t f = read_fixity(n.at("fix"));
-            actions.push_back([sel, f](World& w) { for (int i : sel) w.bodies.fixity[i] |= f; });
+            on_balls.push_back([f](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.fixity[i] |= f; });
         }
         if (n.has("free")) {
             const std::uint8_t f = read_fixity(n.at("free"));
-            actions.push_back([sel, f](World& w) {
+            on_balls.push_back([f](World& w, const std::vector<int>& sel) {
                 for (int i : sel) w.bodies.fixity[i] = (w.bodies.fixity[i] & ~f) | w.bodies.implicit_fixity();
             });
         }
         if (n.has("applied_force")) {
             const Vec f = n.at("applied_force").vec(dim);
-            actions.push_back([sel, f](World& w) { for (int i : sel) w.bodies.applied_force[i] = f; });
+            on_balls.push_back([f](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.applied_force[i] = f; });
         }
         if (n.has("local_damping")) {
             const double a = n.at("local_damping").number(0.0, 1.0, false, true);
-            actions.push_back([sel, a](World& w) { for (int i : sel) w.bodies.local_damping[i] = a; });
+            on_balls.push_back([a](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.local_damping[i] = a; });
         }
+        actions.push_back([selector, on_balls](World& w) {
+            const std::vector<int> sel = selector(w);
+            for (const auto& a : on_balls) a(w, sel);
+        });
     } else if (!n.has("gravity")) {
         n.fail("a set command needs a target: group, id, region or wall (or sets gravity)");
     }
@@ -219,7 +225,7 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
 }
 
 // Bodies chosen by group, id and/or region (all given criteria must hold).
-std::vector<int> Simulation::select(const Node& n, const World& w) const {
+std::function<std::vector<int>(const World&)> Simulation::select(const Node& n, const World& w) const {
     int group = -1;
     if (n.has("group")) {
         group = w.find_group(n.at("group").string());
@@ -236,22 +242,24 @@ std::vector<int> Simulation::select(const Node& n, const World& w) const {
         hi = r.at("max").vec(w.dim);
         if (w.dim == 2) { lo.z() = -kInf; hi.z() = kInf; }
     }
-    std::vector<int> sel;
-    for (std::size_t i = 0; i < w.bodies.size(); ++i) {
-        if (group >= 0 && w.bodies.group[i] != group) continue;
-        if (id >= 0 && w.bodies.id[i] != BodyId(id)) continue;
-        const Vec& p = w.bodies.position[i];
-        if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
-        sel.push_back(int(i));
-    }
-    if (sel.empty()) {
-        json criteria = json::object();  // only what selects, not what is set
-        for (const char* k : {"group", "id", "region"})
-            if (n.has(k)) criteria[k] = n.value()[k];
-        n.fail("selects no ball: none of the " + std::to_string(w.bodies.size()) + " balls matches " + show(criteria) +
-               " (regions select by the positions at load time)");
-    }
-    return sel;
+    json criteria = json::object();  // only what selects, not what is set
+    for (const char* k : {"group", "id", "region"})
+        if (n.has(k)) criteria[k] = n.value()[k];
+    const std::string path = n.path();
+    return [=](const World& world) {
+        std::vector<int> sel;
+        for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+            if (group >= 0 && world.bodies.group[i] != group) continue;
+            if (id >= 0 && world.bodies.id[i] != BodyId(id)) continue;
+            const Vec& p = world.bodies.position[i];
+            if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
+            sel.push_back(int(i));
+        }
+        if (sel.empty())
+            throw InputError(path, "selects no ball at t = " + std::to_string(world.time) + " s: none of the " +
+                                       std::to_string(world.bodies.size()) + " balls matches " + show(criteria));
+        return sel;
+    };
 }
 
 void Simulation::load_commands(const Node& n) {
@@ -359,8 +367,14 @@ void Simulation::run() {
             case Command::cycle: cycle(long(c.value)); break;
             case Command::solve_time: {
                 const double end = w.time + c.value;
-                long guard = 0;
-                while (w.time < end * (1 - 1e-12) && guard++ < c.max_cycles) cycle(1);
+                long done = 0;
+                while (w.time < end - 1e-12 * std::fabs(end)) {
+                    if (done++ >= c.max_cycles)
+                        throw RunError(c.path + ": reached t = " + std::to_string(w.time) + " s of " + std::to_string(end) +
+                                       " s after max_cycles = " + std::to_string(c.max_cycles) +
+                                       " cycles; raise max_cycles or check the timestep");
+                    cycle(1);
+                }
                 break;
             }
             case Command::solve_ratio: {

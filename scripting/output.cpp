@@ -158,11 +158,6 @@ void Simulation::write_vtk_snapshot() {
 
 json Simulation::summary() const {
     const World& w = *world_;
-    // stable_timestep() reads per-ball stiffness sums that exist only once the
-    // world is prepared; a scene summarised before its first step (no commands,
-    // or `plab run --quiet` with only `set`s) crashed there. Prepare it as the
-    // first step would.
-    if (w.step_count == 0) const_cast<World&>(w).prepare();
     json s;
     s["dimension"] = w.dim;
     s["bodies"] = w.bodies.size();

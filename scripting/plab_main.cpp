@@ -41,7 +41,9 @@ int cmd_run(const std::vector<std::string>& args) {
     const std::string scene_dir = fs::absolute(scene_path).parent_path().string();
     Simulation sim(scene, scene_dir);
     sim.set_quiet(quiet);
-    if (out.empty() && !scene.contains("output")) out = "plab_out/" + fs::path(scene_path).stem().string();
+    // --out wins, then the scene's output.dir, then plab_out/<scene name>
+    if (out.empty() && !(scene.contains("output") && scene["output"].contains("dir")))
+        out = "plab_out/" + fs::path(scene_path).stem().string();
     if (!out.empty()) sim.set_output_dir(out);
     try {
         sim.run();

@@ -94,7 +94,8 @@ private:
     void load_output(const Node& n);
     void load_commands(const Node& n);
     std::function<void(World&)> load_set(const Node& n);
-    std::vector<int> select(const Node& n, const World& w) const;
+    // Balls chosen by group, id and/or region, evaluated when a command runs.
+    std::function<std::vector<int>(const World&)> select(const Node& n, const World& w) const;
     void after_step();
     void write_outputs() const;
     void check_domain(const std::string& where, std::size_t first) const;

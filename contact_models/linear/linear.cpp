@@ -22,7 +22,7 @@ struct Linear {
         "Normal force kn*overlap (no tension), incremental shear force -ks*vs*dt rotated into the "
         "current contact plane and capped at fric*Fn, dashpots 2*beta*sqrt(m*k).";
     static constexpr const char* timestep_rule =
-        "per ball sqrt(m / sum kn) over its contacts (translation) and sqrt(I / sum kn r^2) (rotation)";
+        "per ball sqrt(m / sum k) over its contacts (translation) and sqrt(I / sum k r^2) (rotation), k = max(kn, ks)";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
 
     enum Prop : int { kn, ks, fric, dp_nratio, dp_sratio, dp_mode, rgap, prop_count };
@@ -35,7 +35,7 @@ struct Linear {
          "normal dashpot 2*beta_n*sqrt(m*kn) (eq. 27)"},
         {"dp_sratio", "shear critical damping ratio", "1", 0.0, 0.0, 1.0, PLAB_MAX_EXCLUSIVE,
          "shear dashpot 2*beta_s*sqrt(m*ks) (eq. 28)"},
-        {"dp_mode", "dashpot mode", "1", 0.0, 0.0, 3.0, 0,
+        {"dp_mode", "dashpot mode", "1", 0.0, 0.0, 3.0, PLAB_INTEGER,
          "0 full; 1 shear dashpot off while sliding; 2 total normal force >= 0 (no tension); 3 = 1 and 2"},
         {"rgap", "reference gap", "m", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
          "contact is active while surface gap <= rgap"},

@@ -30,6 +30,7 @@ std::uint64_t run_with_threads(int dim, int threads, long steps) {
 #endif
     Simulation sim(settling_scene(dim));
     sim.set_quiet(true);
+    sim.world().parallel_min = 0;  // thread every loop, however short
     sim.cycle(steps);
     return sim.world().state_hash();
 }

@@ -32,6 +32,7 @@ extern "C" {
 /* Range flags of a property: the bounds are inclusive unless flagged. */
 #define PLAB_MIN_EXCLUSIVE 1u
 #define PLAB_MAX_EXCLUSIVE 2u
+#define PLAB_INTEGER 4u /* a whole number (a mode or a count) */
 
 typedef struct plab_property_desc {
     const char* key;      /* scene key, e.g. "kn" */

@@ -23,7 +23,7 @@ void World::geometry(ModelInstance& inst, ContactSet& s) {
     const std::size_t n = s.size();
     const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
     const auto& B = bodies;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
     for (std::size_t k = 0; k < n; ++k) {
         const std::int32_t i = s.end1[k];
         const Vec& xi = B.position[i];
@@ -123,7 +123,7 @@ void World::compute(ModelInstance& inst, ContactSet& s) {
     for (int f : inst.fields_read) read_cols.push_back(fields_[f].data());
     const std::size_t n_batches = (n + kBatch - 1) / kBatch;
     int failed = 0;
-#pragma omp parallel for schedule(dynamic) reduction(| : failed)
+#pragma omp parallel for schedule(dynamic) reduction(| : failed) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::size_t o = b * kBatch;
         std::vector<double*> a1, a2;
@@ -179,7 +179,7 @@ void World::reduce() {
     for (auto& inst : instances_)
         for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
     double local_work = 0;
-#pragma omp parallel for schedule(static) reduction(+ : local_work)
+#pragma omp parallel for schedule(static) reduction(+ : local_work) if (n >= parallel_min)
     for (std::size_t i = 0; i < n; ++i) {
         Vec f = bodies.mass[i] * gravity + bodies.applied_force[i];
         Vec m = bodies.applied_moment[i];
@@ -246,7 +246,9 @@ void World::reduce() {
 StableStep World::stable_timestep() {
     if (!nominal_valid_) { nominal_cache_ = nominal_timestep(); nominal_valid_ = true; }
     StableStep best = nominal_cache_;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
+    // per-ball stiffness sums exist once forces were computed (prepare())
+    const std::size_t summed = std::min(bodies.size(), k_trans_.size());
+    for (std::size_t i = 0; i < summed; ++i) {
         if (k_trans_[i] > 0) {
             const double dt = std::sqrt(bodies.mass[i] / k_trans_[i]);
             if (dt < best.critical) best = {dt, "translation of ball id " + std::to_string(bodies.id[i]) + " (sqrt(m/sum k))"};

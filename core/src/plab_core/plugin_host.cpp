@@ -42,14 +42,15 @@ std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
 
 std::string range_text(const plab_property_desc& p) {
     return std::string(p.flags & PLAB_MIN_EXCLUSIVE ? "(" : "[") + fmt(p.min_value) + ", " + fmt(p.max_value) +
-           (p.flags & PLAB_MAX_EXCLUSIVE ? ")" : "]");
+           (p.flags & PLAB_MAX_EXCLUSIVE ? ")" : "]") + (p.flags & PLAB_INTEGER ? ", whole numbers" : "");
 }
 
 bool in_range(const plab_property_desc& p, double v) {
     if (std::isnan(v)) return false;
     const bool lo = (p.flags & PLAB_MIN_EXCLUSIVE) ? v > p.min_value : v >= p.min_value;
     const bool hi = (p.flags & PLAB_MAX_EXCLUSIVE) ? v < p.max_value : v <= p.max_value;
-    return lo && hi;
+    const bool whole = !(p.flags & PLAB_INTEGER) || std::floor(v) == v;
+    return lo && hi && whole;
 }
 
 std::vector<std::string> check_properties(const plab_property_desc* p, uint32_t n) {

@@ -242,7 +242,7 @@ void World::force_pass() {
 
 void World::kick(double h) {
     const std::size_t n = bodies.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
     for (std::size_t i = 0; i < n; ++i) {
         const std::uint8_t fix = bodies.fixity[i];
         const double inv_m = 1.0 / bodies.mass[i], inv_i = 1.0 / bodies.inertia[i];

@@ -88,6 +88,7 @@ public:
     Walls walls;
     Vec gravity = Vec::Zero();
     double skin = -1;  // neighbour skin, m; < 0: a quarter of the mean radius
+    std::size_t parallel_min = kParallelMin;  // shorter loops run on one thread
 
     // ---- groups and the contact-model assignment table (PFC's CMAT) ----
     int group_index(const std::string& name);   // creates on first use
