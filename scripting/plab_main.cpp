@@ -60,11 +60,18 @@ int cmd_run(const std::vector<std::string>& args) {
     return 0;
 }
 
+double default_range(const plab_contact_model_desc& d) {
+    std::vector<double> props;
+    for (uint32_t p = 0; p < d.property_count; ++p) props.push_back(d.properties[p].default_value);
+    return d.activity_range(props.data());
+}
+
 void describe(const PluginHost& host, const std::string& name) {
     if (const plab_contact_model_desc* d = host.model(name)) {
         std::cout << "contact model " << d->name << "  (" << host.library_of_model(name) << ")\n  " << d->doc << "\n"
-                  << "  activity range: " << (d->range_kind == PLAB_RANGE_GAP ? "surface gap <= " : "centre distance <= ")
-                  << "activity_range(properties)\n  stable timestep: " << d->timestep_rule << "\n  properties:\n";
+                  << "  activity range: active while the " << (d->range_kind == PLAB_RANGE_GAP ? "surface gap" : "centre distance")
+                  << " <= a value set by the properties (" << default_range(*d) << " m with the defaults)\n"
+                  << "  stable timestep: " << d->timestep_rule << "\n  properties:\n";
         for (uint32_t p = 0; p < d->property_count; ++p) {
             const auto& q = d->properties[p];
             std::cout << "    " << q.key << "  " << q.name << " [" << q.unit << "], default " << q.default_value
