@@ -12,6 +12,12 @@ namespace plab {
 
 namespace {
 
+std::string fmt_g(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
 int component(const Node& n, const std::string& c) {
     if (c == "x") return 0;
     if (c == "y") return 1;
@@ -65,8 +71,8 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
     const auto parts = split(q, '.');
     const Node qn = n.at("quantity");
     const char* known =
-        "time, step, dt, contacts, unbalanced_ratio, energy.<kinetic|strain|body|boundary|slip|dashpot|local_damping|"
-        "balance>, ball.<position|velocity|angular_velocity|force>.<x|y|z|magnitude> (with id), "
+        "time, step, dt, contacts, unbalanced_ratio, bonds.intact, bonds.broken, "
+        "energy.<kinetic|strain|body|boundary|slip|dashpot|local_damping|bond_break|balance>, ball.<position|velocity|angular_velocity|force>.<x|y|z|magnitude> (with id), "
         "group.<max|min|mean>.<position|velocity|...>.<x|y|z|magnitude> (with group), wall.<force|moment>.<x|y|z> "
         "(with wall)";
     if (q == "time") return [](const World& x) { return x.time; };
@@ -74,6 +80,9 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
     if (q == "dt") return [](const World& x) { return x.last_dt; };
     if (q == "contacts") return [](const World& x) { return double(x.active_contacts()); };
     if (q == "unbalanced_ratio") return [](const World& x) { return x.unbalanced_force_ratio(); };
+    if (q == "bonds.intact") return [](const World& x) { return double(x.intact_bonds()); };
+    if (q == "bonds.broken") return [](const World& x) { return double(x.bond_breaks.size()); };
+    if (q == "energy.bond_break") return [](const World& x) { return x.energies.bond_break; };
     if (parts[0] == "energy" && parts.size() == 2) {
         const std::string e = parts[1];
         if (e == "kinetic") return [](const World& x) { return x.energies.kinetic; };
@@ -157,7 +166,7 @@ void Simulation::load_output(const Node& n) {
 
 std::function<void(World&)> Simulation::load_set(const Node& n) {
     n.allow_keys({"group", "id", "region", "wall", "velocity", "angular_velocity", "fix", "free", "applied_force",
-                  "local_damping", "gravity"});
+                  "local_damping", "viscous_damping", "gravity"});
     const int dim = world_->dim;
     std::vector<std::function<void(World&)>> actions;
     if (n.has("gravity")) {
@@ -170,7 +179,7 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
         for (std::size_t i = 0; i < world_->walls.walls.size(); ++i)
             if (world_->walls.walls[i].name == name) wall = int(i);
         if (wall < 0) n.at("wall").fail("unknown wall \"" + name + "\"" + listed("walls", wall_names(*world_)));
-        for (const char* k : {"group", "id", "region", "fix", "free", "applied_force", "local_damping"})
+        for (const char* k : {"group", "id", "region", "fix", "free", "applied_force", "local_damping", "viscous_damping"})
             if (n.has(k)) n.at(k).fail(std::string("'") + k + "' does not apply to a wall (set velocity or angular_velocity)");
         if (n.has("velocity")) {
             const Vec v = n.at("velocity").vec(dim);
@@ -209,6 +218,10 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
         if (n.has("applied_force")) {
             const Vec f = n.at("applied_force").vec(dim);
             on_balls.push_back([f](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.applied_force[i] = f; });
+        }
+        if (n.has("viscous_damping")) {
+            const double c = n.at("viscous_damping").number(0.0, kInf, false, true);
+            on_balls.push_back([c](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.viscous_damping[i] = c; });
         }
         if (n.has("local_damping")) {
             const double a = n.at("local_damping").number(0.0, 1.0, false, true);
@@ -262,18 +275,43 @@ std::function<std::vector<int>(const World&)> Simulation::select(const Node& n, 
     };
 }
 
+// {"bond": {"groups": [a, b], "gap": g}}: bonds every contact between the
+// two groups with surface gap <= g (PFC's `contact method bond gap`).
+std::function<void(World&)> Simulation::load_bond(const Node& n) {
+    n.allow_keys({"groups", "gap"});
+    const Node groups = n.at("groups");
+    if (!groups.value().is_array() || groups.size() != 2)
+        groups.fail("expected two group names, got " + show(groups.value()));
+    int g[2];
+    for (int s = 0; s < 2; ++s) {
+        g[s] = world_->find_group(groups.at(s).string());
+        if (g[s] < 0) groups.at(s).fail("unknown group \"" + groups.at(s).string() + "\"" + listed("groups", world_->group_names()));
+    }
+    const double gap = n.number_or("gap", 0.0, 0.0, kInf, false, true);
+    const std::string path = n.path();
+    const bool quiet = quiet_;
+    return [g0 = g[0], g1 = g[1], gap, path, quiet](World& w) {
+        const std::size_t made = w.bond(g0, g1, gap);
+        if (made == 0)
+            throw InputError(path, "made no bond: no contact of a model with bonds (e.g. linear_pbond) between the two "
+                                   "groups has a surface gap <= " + std::to_string(gap) + " m");
+        if (!quiet) spdlog::info("{}: {} bonds", path, made);
+    };
+}
+
 void Simulation::load_commands(const Node& n) {
     n.expect_array();
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node c = n.at(i);
         c.expect_object();
-        if (c.size() != 1) c.fail("a command is an object with one key: cycle, solve, set or output");
+        if (c.size() != 1) c.fail("a command is an object with one key: cycle, solve, set, bond or output");
         Command cmd{Command::cycle, c.path()};
         if (c.has("cycle")) {
             cmd.value = double(c.at("cycle").integer(0, 1L << 50));
         } else if (c.has("solve")) {
             const Node s = c.at("solve");
-            s.allow_keys({"time", "ratio", "max_cycles"});
+            s.allow_keys({"time", "ratio", "max_cycles", "stop_on_bond_break"});
+            cmd.stop_on_bond_break = s.has("stop_on_bond_break") && s.at("stop_on_bond_break").boolean();
             if (s.has("time") == s.has("ratio"))
                 s.fail("solve needs exactly one of: time (s), ratio; got " + show(s.value()));
             if (s.has("time")) {
@@ -290,8 +328,11 @@ void Simulation::load_commands(const Node& n) {
         } else if (c.has("output")) {
             cmd.kind = Command::output;
             c.at("output").choice({"vtk"});
+        } else if (c.has("bond")) {
+            cmd.kind = Command::set;
+            cmd.apply = load_bond(c.at("bond"));
         } else {
-            c.fail("unknown command \"" + c.value().begin().key() + "\"; commands: cycle, solve, set, output");
+            c.fail("unknown command \"" + c.value().begin().key() + "\"; commands: cycle, solve, set, bond, output");
         }
         commands_.push_back(std::move(cmd));
     }
@@ -346,6 +387,17 @@ void Simulation::cycle(long n) {
     if (progress) fprintf(stderr, "\r%60s\r", "");
 }
 
+// Cost figures of the run and its outputs, also for a run that stopped.
+void Simulation::finish_run(std::clock_t cpu0) {
+    const World& w = *world_;
+    run_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    run_.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+    run_.simulated_time = w.time;
+    run_.particle_steps_per_second =
+        run_.wall_seconds > 0 ? double(run_.steps) * double(w.bodies.size()) / run_.wall_seconds : 0;
+    if (!out_dir_.empty()) write_outputs();
+}
+
 void Simulation::run() {
     started_ = std::chrono::steady_clock::now();
     const std::clock_t cpu0 = std::clock();
@@ -368,9 +420,11 @@ void Simulation::run() {
             case Command::solve_time: {
                 const double end = w.time + c.value;
                 long done = 0;
+                const std::size_t breaks_before = w.bond_breaks.size();
                 while (w.time < end - 1e-12 * std::fabs(end)) {
+                    if (c.stop_on_bond_break && w.bond_breaks.size() > breaks_before) break;
                     if (done++ >= c.max_cycles)
-                        throw RunError(c.path + ": reached t = " + std::to_string(w.time) + " s of " + std::to_string(end) +
+                        throw RunError(c.path + ": reached t = " + fmt_g(w.time) + " s of " + fmt_g(end) +
                                        " s after max_cycles = " + std::to_string(c.max_cycles) +
                                        " cycles; raise max_cycles or check the timestep");
                     cycle(1);
@@ -382,9 +436,9 @@ void Simulation::run() {
                 if (w.step_count == 0) w.prepare();
                 while (w.unbalanced_force_ratio() > c.value) {
                     if (done >= c.max_cycles)
-                        throw RunError(c.path + ": ratio " + std::to_string(w.unbalanced_force_ratio()) +
-                                       " still above " + std::to_string(c.value) + " after " + std::to_string(done) +
-                                       " cycles (max_cycles); add local damping or raise max_cycles");
+                        throw RunError(c.path + ": ratio " + fmt_g(w.unbalanced_force_ratio()) + " still above " +
+                                       fmt_g(c.value) + " after " + std::to_string(done) +
+                                       " cycles (max_cycles); add local or viscous damping, or raise max_cycles");
                     cycle(10);
                     done += 10;
                 }
@@ -395,16 +449,10 @@ void Simulation::run() {
             }
         }
     } catch (...) {
-        run_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-        run_.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
-        if (!out_dir_.empty()) write_outputs();
+        finish_run(cpu0);
         throw;
     }
-    run_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-    run_.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
-    run_.simulated_time = w.time;
-    run_.particle_steps_per_second = run_.wall_seconds > 0 ? double(run_.steps) * double(w.bodies.size()) / run_.wall_seconds : 0;
-    if (!out_dir_.empty()) write_outputs();
+    finish_run(cpu0);
 }
 
 } // namespace plab

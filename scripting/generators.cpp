@@ -10,7 +10,7 @@ namespace plab {
 namespace {
 
 struct Material {
-    double radius_lo = 0, radius_hi = 0, density = 0, damping = 0;
+    double radius_lo = 0, radius_hi = 0, density = 0, damping = 0, viscous = 0;
     int group = 0;
     std::uint8_t fixity = 0;
 };
@@ -28,6 +28,7 @@ Material read_material(const Node& n, World& w, bool radius_range) {
     }
     m.density = n.at("density").positive();
     m.damping = n.number_or("local_damping", 0.0, 0.0, 1.0, false, true);
+    m.viscous = n.number_or("viscous_damping", 0.0, 0.0, kInf, false, true);
     m.group = w.group_index(n.string_or("group", "balls"));
     m.fixity = n.has("fix") ? read_fixity(n.at("fix")) : 0;
     return m;
@@ -52,12 +53,13 @@ void add(World& w, const Material& m, const Vec& p, double radius, const Vec& v 
     s.group = m.group;
     s.fixity = m.fixity;
     s.local_damping = m.damping;
+    s.viscous_damping = m.viscous;
     w.bodies.add(s);
 }
 
 void single_ball(const Node& n, World& w) {
     n.allow_keys({"type", "group", "position", "radius", "density", "velocity", "angular_velocity", "fix",
-                  "local_damping"});
+                  "local_damping", "viscous_damping"});
     const Material m = read_material(n, w, false);
     Vec spin = Vec::Zero();
     if (n.has("angular_velocity")) {
@@ -71,7 +73,7 @@ void single_ball(const Node& n, World& w) {
 // 2D square / hexagonal (rows r√3 apart, odd rows shifted by r); 3D cubic /
 // hcp (layers 2r√(2/3) apart, ABAB stacking). Optional jitter for benchmarks.
 Box lattice(const Node& n, World& w) {
-    n.allow_keys({"type", "group", "box", "radius", "density", "packing", "spacing", "fix", "local_damping", "jitter",
+    n.allow_keys({"type", "group", "box", "radius", "density", "packing", "spacing", "fix", "local_damping", "viscous_damping", "jitter",
                   "velocity"});
     const Material m = read_material(n, w, false);
     const Box box = read_box(n.at("box"), w.dim);
@@ -95,17 +97,18 @@ Box lattice(const Node& n, World& w) {
     const double dy = hex ? a * std::sqrt(3.0) / 2.0 : a;   // row pitch (2D) / in-layer row pitch (3D)
     const double dz = packing == "hcp" ? a * std::sqrt(2.0 / 3.0) : a;
     const Vec lo = box.lo + Vec::Constant(r), hi = box.hi - Vec::Constant(r);
-    const long nz = w.dim == 3 ? long(std::floor((hi.z() - lo.z()) / dz + 1e-9)) + 1 : 1;
+    // counts tolerate round-off: a box sized for exactly n rows holds n rows
+    const long nz = w.dim == 3 ? long(std::floor((hi.z() - lo.z()) / dz + 1e-6)) + 1 : 1;
     std::size_t count = 0;
     for (long k = 0; k < nz; ++k) {
         const double layer_x = packing == "hcp" && (k % 2) ? a / 2 : 0.0;
         const double layer_y = packing == "hcp" && (k % 2) ? a * std::sqrt(3.0) / 6.0 : 0.0;
-        const long ny = long(std::floor((hi.y() - lo.y() - layer_y) / dy + 1e-9)) + 1;
+        const long ny = long(std::floor((hi.y() - lo.y() - layer_y) / dy + 1e-6)) + 1;
         for (long j = 0; j < ny; ++j) {
             const double shift = hex && (j % 2) ? a / 2 : 0.0;
             for (long i = 0;; ++i) {
                 Vec p(lo.x() + layer_x + shift + i * a, lo.y() + layer_y + j * dy, w.dim == 3 ? lo.z() + k * dz : 0.0);
-                if (p.x() > hi.x() + 1e-9 * a) break;
+                if (p.x() > hi.x() + 1e-6 * a) break;
                 Vec v = v0;
                 for (int c = 0; c < w.dim; ++c) {
                     if (jit_x > 0) p[c] += rng.uniform(-jit_x, jit_x);
@@ -141,7 +144,7 @@ void check_fill_possible(const Node& count_node, long count, double radius, cons
 
 // Random non-overlapping fill by rejection on a background grid.
 Box random_fill(const Node& n, World& w) {
-    n.allow_keys({"type", "group", "box", "radius", "density", "count", "seed", "fix", "local_damping", "max_attempts"});
+    n.allow_keys({"type", "group", "box", "radius", "density", "count", "seed", "fix", "local_damping", "viscous_damping", "max_attempts"});
     const Material m = read_material(n, w, true);
     const Box box = read_box(n.at("box"), w.dim);
     const long count = n.at("count").integer(1, 100000000);

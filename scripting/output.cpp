@@ -81,6 +81,12 @@ std::string balls_vtp(const World& w) {
     v.array("force", 3, flatten(b.force));
     for (std::size_t f = 0; f < w.field_names().size(); ++f)
         v.array(w.field_names()[f], 1, const_cast<World&>(w).field(int(f)));
+    std::vector<double> stress;  // per-ball average stress, tension positive (row-major 3x3)
+    stress.reserve(9 * b.size());
+    for (const auto& sigma : w.ball_stress())
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) stress.push_back(sigma(r, c));
+    v.array("stress", 9, stress);
     return v.finish();
 }
 
@@ -90,11 +96,13 @@ std::string contacts_vtp(const World& w) {
     v.lines = true;
     v.points << std::setprecision(12);
     v.data << std::setprecision(12);
-    std::vector<double> force, normal_force;
+    std::vector<double> force, normal_force, bonded;
     for (const auto& inst : w.instances()) {
         const ContactSet& s = inst->balls;
+        const int bond_slot = inst->desc->persist_slot;
         for (std::size_t k = 0; k < s.size(); ++k) {
             if (!s.active[k]) continue;
+            bonded.push_back(bond_slot >= 0 && s.history[k * inst->stride + bond_slot] > 0 ? 1.0 : 0.0);
             for (int e : {s.end1[k], s.end2[k]}) {
                 const Vec& p = w.bodies.position[e];
                 v.points << p.x() << ' ' << p.y() << ' ' << p.z() << ' ';
@@ -110,7 +118,18 @@ std::string contacts_vtp(const World& w) {
     v.n_points = 2 * v.n_cells;
     v.array("force", 3, force);
     v.array("normal_force", 1, normal_force);
+    v.array("bonded", 1, bonded);
     return v.finish();
+}
+
+// Every broken bond: when, where, between which balls, and how.
+std::string bond_breaks_csv(const World& w) {
+    std::ostringstream csv;
+    csv << std::setprecision(12) << "step,time,id1,id2,x,y,z,mode\n";
+    for (const BondBreak& b : w.bond_breaks)
+        csv << b.step << ',' << b.time << ',' << b.id1 << ',' << b.id2 << ',' << b.point.x() << ',' << b.point.y() << ','
+            << b.point.z() << ',' << (b.mode == PLAB_BREAK_TENSION ? "tension" : "shear") << "\n";
+    return csv.str();
 }
 
 // Wall facets as lines (2D segments, 3D triangle edges).
@@ -178,7 +197,8 @@ json Simulation::summary() const {
     const Energies& e = w.energies;
     s["energies"] = {{"kinetic", e.kinetic}, {"strain", e.strain}, {"body_work", e.body},
                      {"boundary_work", e.boundary}, {"slip", e.slip}, {"dashpot", e.dashpot},
-                     {"local_damping", e.local_damping}, {"balance", e.balance()}};
+                     {"local_damping", e.local_damping}, {"bond_break", e.bond_break}, {"balance", e.balance()}};
+    s["bonds"] = {{"intact", w.intact_bonds()}, {"broken", w.bond_breaks.size()}};
     json phases;
     for (int p = 0; p < ph_count; ++p) phases[phase_names[p]] = w.phase_seconds[p];
     s["phase_seconds"] = phases;
@@ -210,6 +230,8 @@ void Simulation::write_outputs() const {
         }
         write_atomically(dir / "history.csv", csv.str());
     }
+    if (!world_->bond_breaks.empty() || world_->intact_bonds() > 0)
+        write_atomically(dir / "bond_breaks.csv", bond_breaks_csv(*world_));
     write_atomically(dir / "summary.json", summary().dump(2) + "\n");
 }
 

@@ -1,5 +1,6 @@
 // Scene → World: plug-ins, bodies (generators), walls, the contact-model
 // assignment table, passes and the timestep. Every check names its JSON path.
+#include "calibration.hpp"
 #include "generators.hpp"
 #include "simulation.hpp"
 
@@ -139,7 +140,7 @@ void Simulation::load_contact_models(const Node& n) {
     World& w = *world_;
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node rule = n.at(i);
-        rule.allow_keys({"groups", "model", "properties"});
+        rule.allow_keys({"groups", "model", "properties", "calibrate"});
         const Node groups = rule.at("groups");
         if (!groups.value().is_array() || groups.size() != 2)
             groups.fail("expected two group names, e.g. [\"grains\", \"walls\"] (\"*\" for any), got " + show(groups.value()));
@@ -165,7 +166,19 @@ void Simulation::load_contact_models(const Node& n) {
                                       (names.empty() ? std::string("none (list plug-ins under \"plugins\")") : join(names)) +
                                       ", or \"null\" for no contact");
             }
-            instance = w.add_instance(model, read_properties(rule, d->properties, d->property_count, "model " + model));
+            if (rule.has("calibrate")) {
+                // calibrated values first; explicit properties override them
+                const Node cal = rule.at("calibrate");
+                cal.at("method").choice({"hexagonal_2d"});
+                json merged = rule.value();
+                json props = hexagonal_2d_calibration(cal, w.dim);
+                if (rule.has("properties")) props.update(rule.value()["properties"]);
+                merged["properties"] = props;
+                const Node merged_rule(merged, rule.path());
+                instance = w.add_instance(model, read_properties(merged_rule, d->properties, d->property_count, "model " + model));
+            } else {
+                instance = w.add_instance(model, read_properties(rule, d->properties, d->property_count, "model " + model));
+            }
         } else if (rule.has("properties")) {
             rule.at("properties").fail("the null model has no properties");
         }

@@ -7,6 +7,7 @@
 #include <plab_core/world.hpp>
 
 #include <chrono>
+#include <ctime>
 #include <functional>
 #include <memory>
 #include <string>
@@ -30,6 +31,7 @@ struct Command {
     std::string path;  // for messages
     double value = 0;  // cycles, time, or ratio
     long max_cycles = 0;
+    bool stop_on_bond_break = false;  // solve: stop after the step in which the first bond breaks
     std::function<void(World&)> apply;  // for `set`
 };
 
@@ -94,9 +96,11 @@ private:
     void load_output(const Node& n);
     void load_commands(const Node& n);
     std::function<void(World&)> load_set(const Node& n);
+    std::function<void(World&)> load_bond(const Node& n);
     // Balls chosen by group, id and/or region, evaluated when a command runs.
     std::function<std::vector<int>(const World&)> select(const Node& n, const World& w) const;
     void after_step();
+    void finish_run(std::clock_t cpu0);
     void write_outputs() const;
     void check_domain(const std::string& where, std::size_t first) const;
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);

@@ -3,7 +3,7 @@
 // shear dashpots; Coulomb-limited incremental shear force; no tension in the
 // linear part. Works unchanged for ball–ball and ball–wall contacts (a wall
 // has infinite mass, so the host passes eff_mass = m_ball).
-#include <plab/contact_model.hpp>
+#include "linear_law.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,6 @@
 namespace {
 
 using plab::Contact;
-using plab::Vec3;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
@@ -52,65 +51,18 @@ struct Linear {
     static double activity_range(const double* p) { return p[rgap]; }
 
     explicit Linear(const double* p)
-        : kn_(p[kn]), ks_(p[ks]), fric_(p[fric]), beta_n_(p[dp_nratio]), beta_s_(p[dp_sratio]),
-          mode_(int(p[dp_mode])), rgap_(p[rgap]) {}
+        : law_{p[kn], p[ks], p[fric], p[dp_nratio], p[dp_sratio], int(p[dp_mode]), p[rgap]} {}
 
-    void law(const Contact& c) const;
+    void law(const Contact& c) const {
+        double strain = 0;
+        c.set_force(plab::linear_law::apply(law_, c, shear_force_x, strain));
+        c.set_strain_energy(strain);
+        c.set_stiffness(std::max(law_.kn, law_.ks));
+    }
 
 private:
-    double kn_, ks_, fric_, beta_n_, beta_s_;
-    int mode_;
-    double rgap_;
+    plab::linear_law::Params law_;
 };
-
-// Keeps the stored shear force in the current contact plane: project out the
-// normal component and restore the magnitude (PFC's rotation of the shear
-// force with the contact plane).
-inline Vec3 rotate_into_plane(const Vec3& fs, const Vec3& n) {
-    const double mag = plab::norm(fs);
-    if (mag == 0.0) return fs;
-    Vec3 t = fs - plab::dot(fs, n) * n;
-    const double tmag = plab::norm(t);
-    return tmag > 0.0 ? t * (mag / tmag) : Vec3{};
-}
-
-void Linear::law(const Contact& c) const {
-    const Vec3 n = c.normal();
-    const double overlap = rgap_ - c.gap();  // surface gap relative to the reference gap
-    const Vec3 v = c.rel_velocity();
-    const double vn = plab::dot(v, n);
-    const Vec3 vs = v - vn * n;
-    const double dt = c.dt();
-
-    const double fn_lin = kn_ * overlap;  // eq. 22, >= 0 while active
-
-    const Vec3 fs_old = rotate_into_plane(c.history_vec(shear_force_x), n);
-    Vec3 fs = fs_old - ks_ * dt * vs;  // eqs. 23–25
-    const double fs_max = fric_ * fn_lin;  // eq. 26
-    const double fs_mag = plab::norm(fs);
-    bool sliding = false;
-    double slip = 0.0;
-    if (fs_mag > fs_max) {
-        const Vec3 capped = fs_mag > 0.0 ? fs * (fs_max / fs_mag) : Vec3{};
-        // energy dissipated by the slip displacement (fs - capped)/ks at mean force
-        if (ks_ > 0.0) slip = plab::dot(0.5 * (capped + fs_old), (fs - capped) / ks_);
-        fs = capped;
-        sliding = true;
-    }
-    c.set_history_vec(shear_force_x, fs);
-
-    const double m = c.eff_mass();
-    double fn_d = -2.0 * beta_n_ * std::sqrt(m * kn_) * vn;  // eq. 27, on end 2
-    const bool shear_dashpot = !((mode_ == 1 || mode_ == 3) && sliding);
-    const Vec3 fs_d = shear_dashpot ? -2.0 * beta_s_ * std::sqrt(m * ks_) * vs : Vec3{};  // eq. 28
-    if ((mode_ == 2 || mode_ == 3) && fn_lin + fn_d < 0.0) fn_d = -fn_lin;  // no tension in total
-
-    c.set_force((fn_lin + fn_d) * n + fs + fs_d);
-    c.set_strain_energy(0.5 * fn_lin * fn_lin / kn_ + (ks_ > 0.0 ? 0.5 * plab::dot(fs, fs) / ks_ : 0.0));
-    c.add_slip_energy(std::fabs(slip));
-    c.add_dashpot_energy(-(fn_d * vn + plab::dot(fs_d, vs)) * dt);
-    c.set_stiffness(std::max(kn_, ks_));
-}
 
 } // namespace
 

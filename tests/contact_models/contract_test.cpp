@@ -39,7 +39,7 @@ std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state
     std::vector<uint8_t> active(n);
     std::vector<double> normal(3 * n), gap(n), dist(n), rv(3 * n), rw(3 * n), r1(n), r2(n), m1(n), m2(n), me(n), re(n),
         hist(n * hs + 1), force(3 * n, 0.0), mo1(3 * n, 0.0), mo2(3 * n, 0.0), strain(n, 0.0), slip(n, 0.0), dash(n, 0.0),
-        kt(n, 0.0), kr(n, 0.0), dtl(n, INFINITY);
+        kt(n, 0.0), kr(n, 0.0), dtl(n, INFINITY), brk(n, 0.0);
     std::vector<double> field_values(64, 1000.0);  // a plausible value for any body field
     std::vector<const double*> fields(d.fields_read_count + 1, field_values.data());
     std::vector<std::vector<double>> acc(2 * d.fields_accumulated_count + 2, std::vector<double>(n, 0.0));
@@ -62,6 +62,7 @@ std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state
         const double range = d.activity_range(props.data());
         active[k] = d.range_kind == PLAB_RANGE_GAP ? c.gap <= range : dist[k] <= range;
         for (std::size_t h = 0; h < hs; ++h) hist[k * hs + h] = c.history.empty() ? d.history[h].default_value : c.history[h];
+        if (d.persist_slot >= 0 && hist[k * hs + d.persist_slot] > 0) active[k] = 1;  // as the host: a bond holds
     }
     plab_contact_batch b{};
     b.dim = uint32_t(dim); b.count = uint32_t(n); b.history_stride = uint32_t(hs); b.dt = dt;
@@ -73,6 +74,7 @@ std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state
     b.force = force.data(); b.moment1 = mo1.data(); b.moment2 = mo2.data(); b.strain_energy = strain.data();
     b.slip_energy = slip.data(); b.dashpot_energy = dash.data(); b.stiffness_translational = kt.data();
     b.stiffness_rotational = kr.data(); b.dt_limit = dtl.data(); b.accumulate1 = acc1.data(); b.accumulate2 = acc2.data();
+    b.break_energy = brk.data();
     REQUIRE(d.compute(state, props.data(), &b) == 0);
     std::vector<ContactOutput> out(n);
     for (std::size_t k = 0; k < n; ++k) {
@@ -113,6 +115,7 @@ ContactInput typical(const plab_contact_model_desc& d, const std::vector<double>
     c.rel_velocity = Vec(u(rng), u(rng), dim == 3 ? u(rng) : 0.0) * 0.5;
     c.rel_angular_velocity = dim == 2 ? Vec(0, 0, u(rng) * 10) : Vec(u(rng), u(rng), u(rng)) * 10;
     for (uint32_t h = 0; h < d.history_count; ++h) c.history.push_back(d.history[h].default_value);
+    if (d.persist_slot >= 0 && rng() % 2) c.history[d.persist_slot] = 1;  // half the contacts bonded
     return c;
 }
 
@@ -187,7 +190,9 @@ TEST_CASE("contract: zero force and reset history outside the activity range", "
             ContactInput c = typical(*m->d, m->props, dim, rng);
             const double range = m->d->activity_range(m->props.data());
             c.gap = m->d->range_kind == PLAB_RANGE_GAP ? range + 1e-4 : range + 1e-4 - c.r1 - c.r2;
-            for (auto& h : c.history) h += 1.0;  // stale history must be forgotten
+            for (uint32_t h = 0; h < m->d->history_count; ++h)  // stale history must be forgotten
+                if (int32_t(h) != m->d->persist_slot) c.history[h] += 1.0;
+            if (m->d->persist_slot >= 0) c.history[m->d->persist_slot] = 0;  // (a bond would hold at any gap)
             const auto out = compute(*m->d, m->state, m->props, dim, 1e-6, {c});
             CHECK(out[0].force.norm() == 0.0);
             CHECK(out[0].moment1.norm() == 0.0);

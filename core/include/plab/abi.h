@@ -122,6 +122,7 @@ typedef struct plab_contact_batch {
      * accumulate1[f][k] adds to body end1[k], accumulate2[f][k] to end2[k] */
     double* const* accumulate1;
     double* const* accumulate2;
+    double* break_energy;    /* elastic energy a bond released by breaking this step, J */
 } plab_contact_batch;
 
 typedef struct plab_contact_model_desc {
@@ -145,7 +146,17 @@ typedef struct plab_contact_model_desc {
     void (*destroy)(void* instance);
     /* force-displacement over one batch; returns 0 on success */
     int (*compute)(void* instance, const double* props, const plab_contact_batch* batch);
+    /* Bonds: index of a history slot that keeps a contact alive, or -1.
+     *   > 0  bonded: active at any gap, carried across neighbour rebuilds
+     *   < 0  just broken, mode = -value (PLAB_BREAK_*): the host records
+     *        where and when, then sets the slot to 0
+     *   = 0  unbonded: ordinary activity range
+     * The host's `bond` command sets it to 1 on chosen contacts. */
+    int32_t persist_slot;
 } plab_contact_model_desc;
+
+#define PLAB_BREAK_TENSION 1
+#define PLAB_BREAK_SHEAR 2
 
 /* ---- passes over bodies --------------------------------------------------- */
 

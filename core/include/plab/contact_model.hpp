@@ -18,7 +18,8 @@
 //   PLAB_PLUGIN(plab::add_contact_model<MyModel>(r))
 //
 // Optional members: `fields_read[]`, `fields_accumulated[]`
-// (plab_field_desc arrays) to read body fields / accumulate into them.
+// (plab_field_desc arrays) to read body fields / accumulate into them;
+// `persist_slot` (int) for a model with bonds (see abi.h).
 #ifndef PLAB_CONTACT_MODEL_HPP
 #define PLAB_CONTACT_MODEL_HPP
 
@@ -92,6 +93,7 @@ public:
         b_.stiffness_rotational[k_] = rotational;
     }
     void set_dt_limit(double dt) const { b_.dt_limit[k_] = dt; }
+    void add_break_energy(double e) const { b_.break_energy[k_] += e; }
 
 private:
     Vec3 load(const double* col) const { return {col[3 * k_], col[3 * k_ + 1], col[3 * k_ + 2]}; }
@@ -108,6 +110,8 @@ template <class M, class = void> struct has_fields_read : std::false_type {};
 template <class M> struct has_fields_read<M, std::void_t<decltype(M::fields_read)>> : std::true_type {};
 template <class M, class = void> struct has_fields_acc : std::false_type {};
 template <class M> struct has_fields_acc<M, std::void_t<decltype(M::fields_accumulated)>> : std::true_type {};
+template <class M, class = void> struct has_persist : std::false_type {};
+template <class M> struct has_persist<M, std::void_t<decltype(M::persist_slot)>> : std::true_type {};
 template <class M, class = void> struct has_history : std::false_type {};
 template <class M> struct has_history<M, std::void_t<decltype(M::history)>> : std::true_type {};
 
@@ -169,6 +173,8 @@ template <class M> const plab_contact_model_desc* contact_model_desc() {
         x.create = &detail::create<M>;
         x.destroy = &detail::destroy<M>;
         x.compute = &detail::compute<M>;
+        x.persist_slot = -1;
+        if constexpr (detail::has_persist<M>::value) x.persist_slot = M::persist_slot;
         return x;
     }();
     return &d;

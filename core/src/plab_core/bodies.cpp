@@ -29,6 +29,7 @@ BodyId Bodies::add(const BallSpec& s) {
     mass.push_back(m);
     inertia.push_back(inertia_of(dim, s.radius, m));
     local_damping.push_back(s.local_damping);
+    viscous_damping.push_back(s.viscous_damping);
     group.push_back(s.group);
     fixity.push_back(s.fixity | implicit_fixity());
     return new_id;

@@ -19,6 +19,7 @@ struct BallSpec {
     int group = 0;
     std::uint8_t fixity = 0;
     double local_damping = 0;
+    double viscous_damping = 0;
 };
 
 struct Bodies {
@@ -28,6 +29,7 @@ struct Bodies {
     std::vector<Vec> force, moment;                  // total, after the force pass
     std::vector<Vec> applied_force, applied_moment;  // user loads
     std::vector<double> radius, mass, inertia, local_damping;
+    std::vector<double> viscous_damping;  // 1/s: F = -c m v, M = -c I w (mass-proportional)
     std::vector<int> group;
     std::vector<std::uint8_t> fixity;
     BodyId next_id = 0;

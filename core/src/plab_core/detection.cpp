@@ -16,7 +16,7 @@ void ContactSet::resize_columns(std::size_t n, int n_acc) {
     for (auto* v : {&normal, &rel_velocity, &rel_angular_velocity, &point, &force, &moment1, &moment2})
         v->assign(3 * n, 0.0);
     for (auto* v : {&gap, &distance, &radius1, &radius2, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip,
-                    &dashpot, &k_t, &k_r, &dt_limit})
+                    &dashpot, &k_t, &k_r, &dt_limit, &break_energy})
         v->assign(n, 0.0);
     acc1.assign(n_acc, std::vector<double>(n, 0.0));
     acc2.assign(n_acc, std::vector<double>(n, 0.0));
@@ -119,7 +119,17 @@ void World::build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>
     }
 }
 
-// Replace a set's rows by new candidate pairs, carrying history by key.
+// A bonded pair stays a candidate however far its ends have moved apart.
+void World::keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
+                              std::vector<std::array<std::int32_t, 2>>& pairs) const {
+    const int slot = inst.desc->persist_slot;
+    if (slot < 0) return;
+    for (std::size_t k = 0; k < set.size(); ++k)
+        if (set.history[k * inst.stride + slot] > 0) pairs.push_back({set.end1[k], set.end2[k]});
+}
+
+// Replace a set's rows by new candidate pairs, carrying history by key
+// (a pair listed twice — a bond that is also a candidate — is kept once).
 void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) {
     const std::size_t n = pairs.size();
     std::vector<BodyId> k1(n), k2(n);
@@ -139,12 +149,16 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         return k1[a] != k1[b] ? k1[a] < k1[b] : k2[a] < k2[b];
     });
+    order.erase(std::unique(order.begin(), order.end(),
+                            [&](std::size_t a, std::size_t b) { return k1[a] == k1[b] && k2[a] == k2[b]; }),
+                order.end());
+    const std::size_t n_unique = order.size();
     const int stride = inst.stride;
-    std::vector<double> history(n * stride);
-    std::vector<std::int32_t> e1(n), e2(n);
-    std::vector<BodyId> nk1(n), nk2(n);
+    std::vector<double> history(n_unique * stride);
+    std::vector<std::int32_t> e1(n_unique), e2(n_unique);
+    std::vector<BodyId> nk1(n_unique), nk2(n_unique);
     std::size_t old = 0;
-    for (std::size_t r = 0; r < n; ++r) {
+    for (std::size_t r = 0; r < n_unique; ++r) {
         const std::size_t src = order[r];
         e1[r] = pairs[src][0];
         e2[r] = pairs[src][1];
@@ -163,7 +177,7 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     set.key1 = std::move(nk1);
     set.key2 = std::move(nk2);
     set.history = std::move(history);
-    set.resize_columns(n, int(inst.fields_accumulated.size()));
+    set.resize_columns(n_unique, int(inst.fields_accumulated.size()));
 }
 
 void World::rebuild() {
@@ -171,6 +185,8 @@ void World::rebuild() {
     build_ball_pairs(ball_pairs);
     build_wall_pairs(wall_pairs);
     for (std::size_t m = 0; m < instances_.size(); ++m) {
+        keep_bonded_pairs(*instances_[m], instances_[m]->balls, ball_pairs[m]);
+        keep_bonded_pairs(*instances_[m], instances_[m]->walls, wall_pairs[m]);
         install_pairs(*instances_[m], instances_[m]->balls, ball_pairs[m]);
         install_pairs(*instances_[m], instances_[m]->walls, wall_pairs[m]);
     }

@@ -75,6 +75,8 @@ void World::geometry(ModelInstance& inst, ContactSet& s) {
         s.eff_mass[k] = std::isinf(mj) ? B.mass[i] : B.mass[i] * mj / (B.mass[i] + mj);
         s.eff_radius[k] = rj > 0 ? ri * rj / (ri + rj) : ri;
         s.active[k] = by_distance ? dist <= inst.range : gap <= inst.range;
+        if (inst.desc->persist_slot >= 0 && s.history[k * inst.stride + inst.desc->persist_slot] > 0)
+            s.active[k] = 1;  // a bond holds at any gap
     }
 }
 
@@ -114,7 +116,7 @@ void World::compute(ModelInstance& inst, ContactSet& s) {
     std::fill(s.force.begin(), s.force.end(), 0.0);
     std::fill(s.moment1.begin(), s.moment1.end(), 0.0);
     std::fill(s.moment2.begin(), s.moment2.end(), 0.0);
-    for (auto* v : {&s.strain, &s.slip, &s.dashpot, &s.k_t, &s.k_r}) std::fill(v->begin(), v->end(), 0.0);
+    for (auto* v : {&s.strain, &s.slip, &s.dashpot, &s.k_t, &s.k_r, &s.break_energy}) std::fill(v->begin(), v->end(), 0.0);
     std::fill(s.dt_limit.begin(), s.dt_limit.end(), kInf);
     for (auto& a : s.acc1) std::fill(a.begin(), a.end(), 0.0);
     for (auto& a : s.acc2) std::fill(a.begin(), a.end(), 0.0);
@@ -164,11 +166,33 @@ void World::compute(ModelInstance& inst, ContactSet& s) {
         batch.dt_limit = s.dt_limit.data() + o;
         batch.accumulate1 = a1.data();
         batch.accumulate2 = a2.data();
+        batch.break_energy = s.break_energy.data() + o;
         if (inst.desc->compute(inst.state, inst.props.data(), &batch) != 0) failed = 1;
     }
     if (failed)
         throw RunError("contact model '" + inst.model + "' reported a failure in compute() at step " +
                        std::to_string(step_count));
+    if (inst.desc->persist_slot >= 0) record_breaks(inst, s);
+}
+
+// A model marks a bond it just broke with -mode in its persist slot; the
+// host records the break and leaves the contact unbonded.
+void World::record_breaks(ModelInstance& inst, ContactSet& s) {
+    const int slot = inst.desc->persist_slot;
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        double& state = s.history[k * inst.stride + slot];
+        if (state >= 0) continue;
+        BondBreak b;
+        b.step = step_count;
+        b.time = time;
+        b.id1 = s.key1[k];
+        b.id2 = s.key2[k];
+        b.point = Vec(&s.point[3 * k]);
+        b.mode = int(-state);
+        b.model = inst.model;
+        bond_breaks.push_back(b);
+        state = 0;
+    }
 }
 
 // Sum contact forces and moments onto bodies (plus gravity, applied loads and
@@ -211,6 +235,14 @@ void World::reduce() {
                 m[c] += md;
                 local_work -= (fd * v + md * w) * last_dt;
             }
+        }
+        const double c = bodies.viscous_damping[i];
+        if (c > 0) {  // mass-proportional: every mode decays at the same rate c/2 (quasi-static solves)
+            const Vec fd = -c * bodies.mass[i] * bodies.velocity[i];
+            const Vec md = -c * bodies.inertia[i] * bodies.angular_velocity[i];
+            f += fd;
+            m += md;
+            local_work -= (fd.dot(bodies.velocity[i]) + md.dot(bodies.angular_velocity[i])) * last_dt;
         }
         if (dim == 2) { f.z() = 0; m.x() = 0; m.y() = 0; }
         bodies.force[i] = f;
@@ -264,6 +296,62 @@ StableStep World::stable_timestep() {
                 if (s->active[k] && s->dt_limit[k] < best.critical)
                     best = {s->dt_limit[k], "step limit of model " + inst->model};
     return best;
+}
+
+} // namespace plab
+
+namespace plab {
+
+std::vector<Eigen::Matrix3d> World::ball_stress() const {
+    std::vector<Eigen::Matrix3d> sigma(bodies.size(), Eigen::Matrix3d::Zero());
+    for (const auto& inst : instances_)
+        for (const ContactSet* s : {&inst->balls, &inst->walls})
+            for (std::size_t k = 0; k < s->size(); ++k) {
+                if (!s->active[k]) continue;
+                const Vec f2(&s->force[3 * k]), p(&s->point[3 * k]);
+                const int i = s->end1[k];
+                sigma[i] += (p - bodies.position[i]) * (-f2).transpose();
+                if (!s->with_wall) {
+                    const int j = s->end2[k];
+                    sigma[j] += (p - bodies.position[j]) * f2.transpose();
+                }
+            }
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const double r = bodies.radius[i];
+        const double volume = dim == 2 ? M_PI * r * r : 4.0 / 3.0 * M_PI * r * r * r;
+        sigma[i] /= volume;
+    }
+    return sigma;
+}
+
+std::size_t World::bond(int a, int b, double gap_tolerance) {
+    if (!prepared_) prepare();
+    std::size_t made = 0;
+    for (auto& inst : instances_) {
+        const int slot = inst->desc->persist_slot;
+        if (slot < 0) continue;
+        ContactSet& s = inst->balls;
+        for (std::size_t k = 0; k < s.size(); ++k) {
+            const int g1 = bodies.group[s.end1[k]], g2 = bodies.group[s.end2[k]];
+            if (!((g1 == a && g2 == b) || (g1 == b && g2 == a))) continue;
+            if (s.gap[k] > gap_tolerance) continue;
+            s.history[k * inst->stride + slot] = 1;
+            ++made;
+        }
+    }
+    prepared_ = false;  // re-evaluate forces with the bonds in place
+    return made;
+}
+
+std::size_t World::intact_bonds() const {
+    std::size_t n = 0;
+    for (const auto& inst : instances_) {
+        const int slot = inst->desc->persist_slot;
+        if (slot < 0) continue;
+        for (const ContactSet* s : {&inst->balls, &inst->walls})
+            for (std::size_t k = 0; k < s->size(); ++k) n += s->history[k * inst->stride + slot] > 0;
+    }
+    return n;
 }
 
 } // namespace plab

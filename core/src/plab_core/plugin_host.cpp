@@ -87,6 +87,8 @@ std::vector<std::string> check_model_desc(const plab_contact_model_desc& d) {
     if (d.range_kind != PLAB_RANGE_GAP && d.range_kind != PLAB_RANGE_DISTANCE)
         bad.push_back("range_kind must be PLAB_RANGE_GAP or PLAB_RANGE_DISTANCE");
     if (d.history_count > 0 && !d.history) bad.push_back("history_count > 0 but history is NULL");
+    if (d.persist_slot < -1 || d.persist_slot >= int32_t(d.history_count))
+        bad.push_back("persist_slot must be -1 or the index of a history slot");
     for (uint32_t i = 0; d.history && i < d.history_count; ++i) {
         if (!d.history[i].name || !*d.history[i].name) bad.push_back("history slot " + std::to_string(i) + " has no name");
         if (d.history[i].swap_rule > PLAB_SWAP_NEGATE)

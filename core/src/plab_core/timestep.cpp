@@ -52,6 +52,8 @@ StableStep probe_contact(const ModelInstance& inst, int dim, const Probe& a, con
     batch.strain_energy = &strain; batch.slip_energy = &slip; batch.dashpot_energy = &dash;
     batch.stiffness_translational = &kt; batch.stiffness_rotational = &kr; batch.dt_limit = &dtl;
     batch.accumulate1 = acc1.data(); batch.accumulate2 = acc2.data();
+    double released = 0;
+    batch.break_energy = &released;
     if (inst.desc->compute(inst.state, inst.props.data(), &batch) != 0)
         throw PluginError("contact model '" + inst.model + "' failed on a nominal touching contact");
     StableStep out;

@@ -17,9 +17,9 @@ using BodyId = std::uint64_t;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Loops shorter than this run on one thread: below it the fork–join barrier
-// costs more than the loop (measured: 2 threads at N = 1e3 were 7x slower
-// than 1 on a loaded machine). Results do not depend on it.
-constexpr std::size_t kParallelMin = 4096;
+// costs more than the loop (measured at N = 1e3: 2 threads 1.5x faster than
+// 1 on an idle machine, 7x slower on a loaded one). Results do not depend on it.
+constexpr std::size_t kParallelMin = 1024;
 
 // Degrees of freedom that can be fixed, as bits.
 enum Dof : std::uint8_t { dof_x = 1, dof_y = 2, dof_z = 4, dof_rx = 8, dof_ry = 16, dof_rz = 32 };

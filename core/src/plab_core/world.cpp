@@ -297,11 +297,12 @@ void World::sum_energies(double dt) {
     for (auto& inst : instances_)
         for (ContactSet* s : {&inst->balls, &inst->walls}) {
             for (std::size_t k = 0; k < s->size(); ++k) {
-                if (!s->active[k]) continue;
+                if (!s->active[k]) continue;  // (a bond broken this step was active when it broke)
                 strain += s->strain[k];
                 if (dt == 0) continue;  // a re-evaluation, not a step: no dissipation
                 energies.slip += s->slip[k];
                 energies.dashpot += s->dashpot[k];
+                energies.bond_break += s->break_energy[k];
                 if (s->with_wall) {
                     // work of the wall on the ball: -force (on wall) · v_wall(point) dt
                     const Vec f(&s->force[3 * k]);

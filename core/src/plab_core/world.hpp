@@ -30,7 +30,7 @@ struct ContactSet {
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
     std::vector<double> radius1, radius2, mass1, mass2, eff_mass, eff_radius;
     // outputs
-    std::vector<double> force, moment1, moment2, strain, slip, dashpot, k_t, k_r, dt_limit;
+    std::vector<double> force, moment1, moment2, strain, slip, dashpot, k_t, k_r, dt_limit, break_energy;
     std::vector<std::vector<double>> acc1, acc2;
 
     std::size_t size() const { return end1.size(); }
@@ -64,8 +64,19 @@ struct Energies {
     double boundary = 0;      // work done by walls, applied loads and fixed velocities
     double slip = 0;          // dissipated by friction
     double dashpot = 0;       // dissipated by contact dashpots
-    double local_damping = 0; // dissipated by local damping
-    double balance() const { return kinetic + strain - body - boundary + slip + dashpot + local_damping; }
+    double local_damping = 0; // dissipated by local and viscous body damping
+    double bond_break = 0;    // elastic energy released by breaking bonds
+    double balance() const { return kinetic + strain - body - boundary + slip + dashpot + local_damping + bond_break; }
+};
+
+// A bond that broke (thesis §3.3.3): where, when, and in which mode.
+struct BondBreak {
+    std::uint64_t step = 0;
+    double time = 0;
+    BodyId id1 = 0, id2 = 0;
+    Vec point = Vec::Zero();
+    int mode = 0;  // PLAB_BREAK_TENSION / PLAB_BREAK_SHEAR
+    std::string model;
 };
 
 enum Phase { ph_timestep, ph_motion, ph_detection, ph_pre_force, ph_force, ph_reduction, ph_post_force, ph_integrate, ph_count };
@@ -127,8 +138,20 @@ public:
     // Forces at the current state (first call, or after the scene changed).
     void prepare();
 
+    // ---- bonds ----
+    // Marks every contact between the two groups whose surface gap is at
+    // most `gap_tolerance` as bonded, for models with a persist slot
+    // (PFC's `contact method bond gap`). Returns the number of bonds made.
+    std::size_t bond(int group_a, int group_b, double gap_tolerance);
+    std::size_t intact_bonds() const;
+    std::vector<BondBreak> bond_breaks;
+
     // ---- measurements ----
     Energies energies;
+    // Per-ball average stress (tension positive), PFC's measurement:
+    // sigma = (1/V) sum over contacts of r_c ⊗ f_c, with f_c the contact
+    // force on the ball and V its volume (area × unit thickness in 2D).
+    std::vector<Eigen::Matrix3d> ball_stress() const;
     double unbalanced_force_ratio() const;  // mean unbalanced / mean contact force
     std::size_t active_contacts() const;
     std::uint64_t state_hash() const;       // FNV-1a over positions, velocities, spins
@@ -175,6 +198,9 @@ private:
     void geometry(ModelInstance& inst, ContactSet& set);
     void resolve_wall_features(ContactSet& set);
     void compute(ModelInstance& inst, ContactSet& set);
+    void record_breaks(ModelInstance& inst, ContactSet& set);
+    void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
+                           std::vector<std::array<std::int32_t, 2>>& pairs) const;
     void force_pass();
     void reduce();
     void run_passes(std::uint32_t phase);

@@ -1,0 +1,70 @@
+// The linear contact law (thesis eqs. 21–29), shared by `linear` and by the
+// linear component of `linear_pbond`: one law, written once.
+#pragma once
+
+#include <plab/contact_model.hpp>
+
+#include <cmath>
+
+namespace plab::linear_law {
+
+struct Params {
+    double kn, ks, fric, beta_n, beta_s;
+    int dp_mode;
+    double rgap;
+};
+
+// Keeps a stored vector (shear force, bending moment) in the current contact
+// plane: project out the normal component and restore the magnitude (PFC's
+// rotation of the shear force with the contact plane).
+inline Vec3 rotate_into_plane(const Vec3& v, const Vec3& n) {
+    const double mag = norm(v);
+    if (mag == 0.0) return v;
+    const Vec3 t = v - dot(v, n) * n;
+    const double tmag = norm(t);
+    return tmag > 0.0 ? t * (mag / tmag) : Vec3{};
+}
+
+// Applies the law to contact c with its shear force stored in history slots
+// [shear_slot, shear_slot + 3). Returns the force on end 2; adds the strain,
+// slip and dashpot energies. Inactive (surface gap > rgap): zero force and
+// the shear history is forgotten.
+inline Vec3 apply(const Params& p, const Contact& c, int shear_slot, double& strain) {
+    const Vec3 n = c.normal();
+    const double overlap = p.rgap - c.gap();  // surface gap relative to the reference gap
+    if (overlap < 0.0) {
+        c.set_history_vec(shear_slot, Vec3{});
+        return Vec3{};
+    }
+    const Vec3 v = c.rel_velocity();
+    const double vn = dot(v, n);
+    const Vec3 vs = v - vn * n;
+    const double dt = c.dt();
+    const double fn_lin = p.kn * overlap;  // eq. 22
+
+    const Vec3 fs_old = rotate_into_plane(c.history_vec(shear_slot), n);
+    Vec3 fs = fs_old - p.ks * dt * vs;  // eqs. 23–25
+    const double fs_max = p.fric * fn_lin;  // eq. 26
+    const double fs_mag = norm(fs);
+    bool sliding = false;
+    if (fs_mag > fs_max) {
+        const Vec3 capped = fs_mag > 0.0 ? fs * (fs_max / fs_mag) : Vec3{};
+        // energy dissipated by the slip displacement (fs - capped)/ks at mean force
+        if (p.ks > 0.0) c.add_slip_energy(std::fabs(dot(0.5 * (capped + fs_old), (fs - capped) / p.ks)));
+        fs = capped;
+        sliding = true;
+    }
+    c.set_history_vec(shear_slot, fs);
+
+    const double m = c.eff_mass();
+    double fn_d = -2.0 * p.beta_n * std::sqrt(m * p.kn) * vn;  // eq. 27, on end 2
+    const bool shear_dashpot = !((p.dp_mode == 1 || p.dp_mode == 3) && sliding);
+    const Vec3 fs_d = shear_dashpot ? -2.0 * p.beta_s * std::sqrt(m * p.ks) * vs : Vec3{};  // eq. 28
+    if ((p.dp_mode == 2 || p.dp_mode == 3) && fn_lin + fn_d < 0.0) fn_d = -fn_lin;  // no tension in total
+
+    strain += 0.5 * fn_lin * fn_lin / p.kn + (p.ks > 0.0 ? 0.5 * dot(fs, fs) / p.ks : 0.0);
+    c.add_dashpot_energy(-(fn_d * vn + dot(fs_d, vs)) * dt);
+    return (fn_lin + fn_d) * n + fs + fs_d;
+}
+
+} // namespace plab::linear_law

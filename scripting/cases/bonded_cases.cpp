@@ -1,0 +1,251 @@
+// Bonded-structure validation: the thesis cantilever (§6.2, Tables 4–6) and
+// robustness of a plate hit by a fast ball.
+#include "bonded_cases.hpp"
+
+#include "../simulation.hpp"
+#include "../validation.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <vector>
+
+namespace plab::cases {
+
+namespace {
+
+// thesis Table 4
+constexpr double kLength = 0.201, kE = 70e9, kNu = 0.33, kSigmaUlt = 310e6, kDensity = 2800, kHeight = 0.006196;
+const double kSqrt3 = std::sqrt(3.0);
+
+int rows_for(double r) { return int(std::lround((kHeight - 2 * r) / (kSqrt3 * r))) + 1; }
+double height_of(double r, int rows) { return 2 * r + (rows - 1) * kSqrt3 * r; }
+
+int history_slot(const plab_contact_model_desc& d, const std::string& name) {
+    for (uint32_t h = 0; h < d.history_count; ++h)
+        if (name == d.history[h].name) return int(h);
+    throw std::runtime_error("model " + std::string(d.name) + " has no history slot " + name);
+}
+
+double property(const ModelInstance& inst, const std::string& key) {
+    for (uint32_t p = 0; p < inst.desc->property_count; ++p)
+        if (key == inst.desc->properties[p].key) return inst.props[p];
+    throw std::runtime_error("model " + inst.model + " has no property " + key);
+}
+
+// The beam: a hexagonal lattice bonded with the thesis calibration, the
+// left end (ball centres within 2.2 R of x = 0) clamped.
+std::unique_ptr<Simulation> beam(double r, const json& damping) {
+    const int rows = rows_for(r);
+    json lattice = {{"type", "lattice"}, {"group", "beam"}, {"packing", "hexagonal"},
+                    {"box", {{"min", {0, 0}}, {"max", {kLength, height_of(r, rows) + 0.01 * r}}}},
+                    {"radius", r}, {"density", kDensity}};
+    lattice.update(damping);
+    json scene = {{"dimension", 2},
+                  {"plugins", {"linear_pbond"}},
+                  {"bodies", {lattice}},
+                  {"contact_models", {{{"groups", {"beam", "beam"}}, {"model", "linear_pbond"},
+                                       {"calibrate", {{"method", "hexagonal_2d"}, {"E", kE}, {"nu", kNu},
+                                                      {"sigma_ult", kSigmaUlt}, {"radius", r}}},
+                                       {"properties", {{"pb_mcf", 0.0}}}}}},  // β̄ = 0 as in the thesis (eqs. 49–50)
+                  {"timestep", {{"safety_factor", 0.8}}}};
+    auto sim = std::make_unique<Simulation>(scene);
+    sim->set_quiet(true);
+    World& w = sim->world();
+    w.bond(w.find_group("beam"), w.find_group("beam"), 1e-9 * r);
+    for (std::size_t i = 0; i < w.bodies.size(); ++i)
+        if (w.bodies.position[i].x() < 2.2 * r) w.bodies.fixity[i] = 63;
+    w.mark_dirty();
+    return sim;
+}
+
+int tip_index(const World& w) {
+    int tip = 0;
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+        const Vec& p = w.bodies.position[i];
+        const Vec& q = w.bodies.position[tip];
+        if (p.y() < q.y() - 1e-12 || (std::fabs(p.y() - q.y()) <= 1e-12 && p.x() > q.x())) tip = int(i);
+    }
+    return tip;
+}
+
+// Mass-proportional damping at twice the first bending frequency
+// ω1 = 1.875² √(EI / (m' L⁴)): every mode then decays as fast as the first.
+double critical_viscous_damping(double r) {
+    const double h = height_of(r, rows_for(r));
+    const double mass_per_length = kDensity * M_PI * r * r * (h / (kSqrt3 * r) + 0.5) / (2 * r);
+    return 2 * 3.516 * std::sqrt(kE * h * h * h / 12 / (mass_per_length * std::pow(kLength, 4)));
+}
+
+} // namespace
+
+Cantilever static_cantilever(double r, double load, double ratio) {
+    const std::clock_t t0 = std::clock();
+    auto sim = beam(r, {{"viscous_damping", critical_viscous_damping(r)}});
+    World& w = sim->world();
+    Cantilever out;
+    out.radius = r;
+    out.rows = rows_for(r);
+    out.balls = long(w.bodies.size());
+    out.height = height_of(r, out.rows);
+    const int tip = tip_index(w);
+    const double y0 = w.bodies.position[tip].y();
+    w.bodies.applied_force[tip] = Vec(0, load, 0);
+    w.prepare();
+    while (out.steps < 20000000) {
+        for (int k = 0; k < 50; ++k) w.step();
+        out.steps += 50;
+        if (w.unbalanced_force_ratio() <= ratio) break;
+    }
+    out.deflection = w.bodies.position[tip].y() - y0;
+    const double inertia = out.height * out.height * out.height / 12;
+    out.analytical = load * std::pow(kLength, 3) / (3 * kE * inertia);
+    out.strength_load = kSigmaUlt * out.height * out.height / (6 * kLength);
+    // the equivalent continuum beam: clamp line = where clamped material ends
+    // (last clamped centre + R, averaged over the rows)
+    double clamp_line = 0;
+    for (int row = 0; row < out.rows; ++row) clamp_line += (row % 2 ? 2 * r : r) + r;
+    clamp_line /= out.rows;
+    out.equivalent_height = out.rows * kSqrt3 * r;
+    out.equivalent_length = w.bodies.position[tip].x() - clamp_line;
+    const double inertia_eq = std::pow(out.equivalent_height, 3) / 12;
+    out.analytical_equivalent = load * std::pow(out.equivalent_length, 3) / (3 * kE * inertia_eq);
+    out.strength_load_equivalent = kSigmaUlt * out.equivalent_height * out.equivalent_height / (6 * out.equivalent_length);
+
+    // first break by linearity: the lattice is linear-elastic until a bond breaks
+    const ModelInstance& inst = *w.instances()[0];
+    const int state = history_slot(*inst.desc, "bond_state"), fn = history_slot(*inst.desc, "bond_normal_force");
+    const double sigma_c = property(inst, "pb_ten");
+    double worst = 0;
+    const ContactSet& s = inst.balls;
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        if (s.history[k * inst.stride + state] <= 0) continue;
+        const double area = 2 * std::min(s.radius1[k], s.radius2[k]) * property(inst, "pb_rmul");
+        const double sigma = s.history[k * inst.stride + fn] / area;
+        if (sigma / sigma_c > worst) {
+            worst = sigma / sigma_c;
+            out.break_x = s.point[3 * k];
+            out.break_y = s.point[3 * k + 1];
+            out.break_in_tension = sigma > 0;
+        }
+    }
+    out.first_break_load = worst > 0 ? load / worst : 0;
+    out.cpu_seconds = double(std::clock() - t0) / CLOCKS_PER_SEC;
+    return out;
+}
+
+VelocityFailure velocity_failure(double r, double velocity) {
+    auto sim = beam(r, {{"local_damping", 0.7}});
+    World& w = sim->world();
+    const int tip = tip_index(w);
+    w.bodies.local_damping[tip] = 0;  // the reaction is then the contact force alone
+    w.bodies.fixity[tip] |= dof_y;
+    w.bodies.velocity[tip] = Vec(0, velocity, 0);
+    w.mark_dirty();
+    VelocityFailure out;
+    while (w.bond_breaks.empty() && out.steps < 50000000) {
+        w.step();
+        ++out.steps;
+    }
+    out.reaction = -w.bodies.force[tip].y();
+    if (!w.bond_breaks.empty()) {
+        const BondBreak& b = w.bond_breaks.front();
+        out.x = b.point.x();
+        out.y = b.point.y();
+        out.tension = b.mode == PLAB_BREAK_TENSION;
+        out.time = b.time;
+    }
+    return out;
+}
+
+Impact plate_impact(double speed, double duration) {
+    const double r = 0.001, projectile_r = 0.002, thickness = 0.0195;
+    json scene = {
+        {"dimension", 2},
+        {"plugins", {"linear", "linear_pbond"}},
+        {"bodies",
+         {{{"type", "lattice"}, {"group", "plate"}, {"packing", "hexagonal"},
+           {"box", {{"min", {0, 0}}, {"max", {0.08, thickness}}}}, {"radius", r}, {"density", 2400}},
+          {{"type", "ball"}, {"group", "projectile"}, {"position", {0.04, thickness + projectile_r + 1e-4}},
+           {"velocity", {0, -speed}}, {"radius", projectile_r}, {"density", 7800}}}},
+        {"contact_models",
+         {{{"groups", {"*", "*"}}, {"model", "linear"}, {"properties", {{"kn", 5e8}, {"ks", 5e8}, {"fric", 0.3}}}},
+          {{"groups", {"plate", "plate"}}, {"model", "linear_pbond"},
+           {"calibrate", {{"method", "hexagonal_2d"}, {"E", 30e9}, {"nu", 0.2}, {"sigma_ult", 30e6}, {"radius", r}}},
+           {"properties", {{"fric", 0.3}}}}}},
+        {"timestep", {{"safety_factor", 0.5}}}};
+    Simulation sim(scene);
+    sim.set_quiet(true);
+    World& w = sim.world();
+    const int plate = w.find_group("plate");
+    Impact out;
+    out.bonds = long(w.bond(plate, plate, 1e-9));
+    for (std::size_t i = 0; i < w.bodies.size(); ++i)  // clamp both ends of the plate
+        if (w.bodies.group[i] == plate && (w.bodies.position[i].x() < 2.5 * r || w.bodies.position[i].x() > 0.08 - 2.5 * r))
+            w.bodies.fixity[i] = 63;
+    w.prepare();
+    const double e0 = w.energies.balance();
+    out.input_energy = w.energies.kinetic;
+    try {
+        while (w.time < duration) w.step();
+    } catch (const RunError&) {
+        out.finite = false;
+    }
+    out.balance_error = std::fabs(w.energies.balance() - e0) / out.input_energy;
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) out.max_speed = std::max(out.max_speed, w.bodies.velocity[i].norm());
+    out.broken = long(w.bond_breaks.size());
+    for (const BondBreak& b : w.bond_breaks)
+        out.farthest_break = std::max(out.farthest_break, std::fabs(b.point.x() - 0.04));
+    return out;
+}
+
+} // namespace plab::cases
+
+namespace {
+
+using namespace plab;
+using namespace plab::cases;
+
+PLAB_VALIDATION_CASE("cantilever",
+                     "thesis 6.2: tip deflection vs P L^3/(3EI) for 50, 500, 5000 N and the first-break load vs "
+                     "sigma_ult b h^2/(6L), against the continuum beam the lattice represents",
+                     [](bool quick) {
+    CaseResult result{0, 0.02,
+                      "max relative error of the tip deflection vs the equivalent beam (first-break load: 5 % "
+                      "tolerance, scaled)",
+                      ""};
+    const double ratio = quick ? 1e-5 : 1e-7;
+    char line[400];
+    // full: R = 0.5 mm at three loads, then the resolution study at 5000 N
+    std::vector<std::pair<double, double>> runs = {{0.0005, 50.0}, {0.0005, 500.0}, {0.0005, 5000.0},
+                                                   {0.001, 5000.0}, {0.00025, 5000.0}};
+    if (quick) runs = {{0.001, 5000.0}};
+    for (const auto& [r, load] : runs) {
+        const Cantilever c = static_cantilever(r, load, ratio);
+        const double err = (c.deflection - c.analytical_equivalent) / c.analytical_equivalent;
+        const double err_nominal = (c.deflection - c.analytical) / c.analytical;
+        result.error = std::max(result.error, std::fabs(err));
+        std::snprintf(line, sizeof line,
+                      "    R %.2g mm, %d rows, %ld balls, P %5.0f N: tip deflection %.6g m; equivalent beam (L %.5f, h "
+                      "%.6f) %.6g m, error %+.2f %%; nominal (L 0.201, h %.6f) %.6g m, error %+.2f %%; %ld steps, "
+                      "cpu %.1f s\n",
+                      r * 1e3, c.rows, c.balls, load, c.deflection, c.equivalent_length, c.equivalent_height,
+                      c.analytical_equivalent, 100 * err, c.height, c.analytical, 100 * err_nominal, c.steps,
+                      c.cpu_seconds);
+        result.details += line;
+        if (load == 5000.0) {
+            const double ferr = (c.first_break_load - c.strength_load_equivalent) / c.strength_load_equivalent;
+            const double ferr_nominal = (c.first_break_load - c.strength_load) / c.strength_load;
+            std::snprintf(line, sizeof line,
+                          "    first break (linear in P): %.1f N; equivalent beam %.1f N, error %+.2f %%; nominal "
+                          "sigma_ult h^2/(6L) = %.1f N, error %+.2f %%; at x = %.4f m, y = %.4f m, in %s\n",
+                          c.first_break_load, c.strength_load_equivalent, 100 * ferr, c.strength_load,
+                          100 * ferr_nominal, c.break_x, c.break_y, c.break_in_tension ? "tension" : "compression");
+            result.details += line;
+            result.error = std::max(result.error, std::fabs(ferr) * 0.02 / 0.05);  // 5 % onto the 2 % scale
+        }
+    }
+    return result;
+});
+
+} // namespace

@@ -1,0 +1,58 @@
+// Measurements behind the bonded-structure validation cases (issue: parallel
+// bonds): the thesis cantilever (§6.2) and a plate hit by a fast ball.
+#pragma once
+
+#include <string>
+
+namespace plab::cases {
+
+struct Cantilever {
+    double radius = 0;        // ball radius, m
+    int rows = 0;
+    long balls = 0, steps = 0;
+    double height = 0;        // lattice envelope height 2R + (rows-1)√3 R, m
+    double deflection = 0;    // tip deflection at equilibrium, m
+    double analytical = 0;    // P L³ / (3 E I), I = h³/12, nominal L = 0.201 m and envelope h
+    // The continuum the lattice represents: the calibration (eq. 36) gives E
+    // per hexagonal cell of area 2√3 R², so the beam's height is rows·√3 R,
+    // and its free length runs from the clamp line to the loaded ball centre.
+    double equivalent_height = 0, equivalent_length = 0;
+    double analytical_equivalent = 0;
+    double strength_load_equivalent = 0;  // σ_ult h² / (6 L) with the equivalent beam
+    double first_break_load = 0;  // by linearity: P σc / max σ over bonds, N
+    double break_x = 0, break_y = 0;  // where that bond is, m
+    bool break_in_tension = false;
+    double strength_load = 0;  // σ_ult h² / (6 L), N
+    double cpu_seconds = 0;
+};
+
+// Static tip load P on the bottom-right ball, left end clamped, solved with
+// viscous damping to an unbalanced-force ratio. L = 0.201 m, E = 70 GPa,
+// ν = 0.33, σ_ult = 310 MPa (thesis Table 4); rows chosen so the height is
+// closest to 6.196 mm.
+Cantilever static_cantilever(double radius, double load, double ratio);
+
+struct VelocityFailure {
+    double reaction = 0;     // force on the driven ball when the first bond broke, N
+    double x = 0, y = 0;     // where it broke
+    bool tension = false;
+    double time = 0;
+    long steps = 0;
+};
+// The thesis failure test: the bottom-right ball driven upward at `velocity`
+// with local damping until the first bond breaks.
+VelocityFailure velocity_failure(double radius, double velocity);
+
+struct Impact {
+    double input_energy = 0;      // kinetic energy of the projectile, J
+    double balance_error = 0;     // |energy balance drift| / input energy
+    double max_speed = 0;         // fastest ball at the end, m/s
+    long broken = 0, bonds = 0;
+    double farthest_break = 0;    // largest horizontal distance of a break from the impact point, m
+    bool finite = true;
+};
+// A steel ball at `speed` hits a brittle bonded 2D plate (rock-like:
+// E 30 GPa, ν 0.2, σ_ult 30 MPa, 80 × 19.5 mm) clamped at both ends; energy balance over the run.
+Impact plate_impact(double speed, double duration);
+
+} // namespace plab::cases
