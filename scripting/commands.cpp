@@ -56,6 +56,7 @@ const std::vector<Vec>& body_vectors(const Bodies& b, const std::string& which) 
     if (which == "position") return b.position;
     if (which == "velocity") return b.velocity;
     if (which == "angular_velocity") return b.angular_velocity;
+    if (which == "applied_force") return b.applied_force;
     return b.force;
 }
 
@@ -72,7 +73,7 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
     const Node qn = n.at("quantity");
     const char* known =
         "time, step, dt, contacts, unbalanced_ratio, bonds.intact, bonds.broken, "
-        "energy.<kinetic|strain|body|boundary|slip|dashpot|local_damping|bond_break|balance>, ball.<position|velocity|angular_velocity|force>.<x|y|z|magnitude> (with id), "
+        "energy.<kinetic|strain|body|boundary|slip|dashpot|local_damping|bond_break|balance>, ball.<position|velocity|angular_velocity|force|applied_force>.<x|y|z|magnitude> (with id), "
         "group.<max|min|mean>.<position|velocity|...>.<x|y|z|magnitude> (with group), wall.<force|moment>.<x|y|z> "
         "(with wall)";
     if (q == "time") return [](const World& x) { return x.time; };
@@ -95,7 +96,8 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
         if (e == "balance") return [](const World& x) { return x.energies.balance(); };
     }
     const bool vec_name = parts.size() >= 2 && (parts[parts.size() - 2] == "position" || parts[parts.size() - 2] == "velocity" ||
-                                                parts[parts.size() - 2] == "angular_velocity" || parts[parts.size() - 2] == "force");
+                                                parts[parts.size() - 2] == "angular_velocity" || parts[parts.size() - 2] == "force" ||
+                                                parts[parts.size() - 2] == "applied_force");
     if (parts[0] == "ball" && parts.size() == 3 && vec_name) {
         const BodyId id = BodyId(n.at("id").integer(0, long(w.bodies.next_id) - 1));
         const std::string which = parts[1];

@@ -19,6 +19,11 @@ struct Cantilever {
     double equivalent_height = 0, equivalent_length = 0;
     double analytical_equivalent = 0;
     double strength_load_equivalent = 0;  // σ_ult h² / (6 L) with the equivalent beam
+    // σ11 of the top and bottom rows between 20 % and 80 % of the length
+    // against -M y / I (ball stress rescaled from πR² to the hexagonal cell
+    // 2√3 R²): RMS of the difference over the RMS of the beam-theory stress
+    double fibre_stress_error = 0;
+    double fibre_stress_scale = 0;  // RMS of -M y / I over those balls, Pa
     double first_break_load = 0;  // by linearity: P σc / max σ over bonds, N
     double break_x = 0, break_y = 0;  // where that bond is, m
     bool break_in_tension = false;
