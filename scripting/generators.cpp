@@ -15,7 +15,17 @@ struct Material {
     std::uint8_t fixity = 0;
 };
 
-Material read_material(const Node& n, World& w, bool radius_range) {
+// `mass` (ball, lattice) gives each ball's mass directly, e.g. an SPH
+// particle's rho0 dp^2 (2D, per unit thickness) or rho0 dp^3 (3D); it is
+// stored as the equivalent material density of the disc / sphere, so the
+// kernel's mass and inertia (from that mass) follow.
+double density_from_mass(const Node& n, int dim, double radius) {
+    if (n.has("density")) n.at("mass").fail("give either \"density\" or \"mass\", not both");
+    const double mass = n.at("mass").positive();
+    return mass / Bodies::mass_of(dim, radius, 1.0);
+}
+
+Material read_material(const Node& n, World& w, bool radius_range, bool allow_mass = false) {
     Material m;
     const Node r = n.at("radius");
     if (radius_range && r.value().is_array()) {
@@ -26,7 +36,7 @@ Material read_material(const Node& n, World& w, bool radius_range) {
     } else {
         m.radius_lo = m.radius_hi = r.positive();
     }
-    m.density = n.at("density").positive();
+    m.density = allow_mass && n.has("mass") ? density_from_mass(n, w.dim, m.radius_lo) : n.at("density").positive();
     m.damping = n.number_or("local_damping", 0.0, 0.0, 1.0, false, true);
     m.viscous = n.number_or("viscous_damping", 0.0, 0.0, kInf, false, true);
     m.group = w.group_index(n.string_or("group", "balls"));
@@ -58,9 +68,9 @@ void add(World& w, const Material& m, const Vec& p, double radius, const Vec& v 
 }
 
 void single_ball(const Node& n, World& w) {
-    n.allow_keys({"type", "group", "position", "radius", "density", "velocity", "angular_velocity", "fix",
+    n.allow_keys({"type", "group", "position", "radius", "density", "mass", "velocity", "angular_velocity", "fix",
                   "local_damping", "viscous_damping"});
-    const Material m = read_material(n, w, false);
+    const Material m = read_material(n, w, false, true);
     Vec spin = Vec::Zero();
     if (n.has("angular_velocity")) {
         if (w.dim == 2) spin.z() = n.at("angular_velocity").number();
@@ -73,9 +83,9 @@ void single_ball(const Node& n, World& w) {
 // 2D square / hexagonal (rows r√3 apart, odd rows shifted by r); 3D cubic /
 // hcp (layers 2r√(2/3) apart, ABAB stacking). Optional jitter for benchmarks.
 Box lattice(const Node& n, World& w) {
-    n.allow_keys({"type", "group", "box", "radius", "density", "packing", "spacing", "fix", "local_damping", "viscous_damping", "jitter",
-                  "velocity"});
-    const Material m = read_material(n, w, false);
+    n.allow_keys({"type", "group", "box", "radius", "density", "mass", "packing", "spacing", "fix", "local_damping",
+                  "viscous_damping", "jitter", "velocity"});
+    const Material m = read_material(n, w, false, true);
     const Box box = read_box(n.at("box"), w.dim);
     const double r = m.radius_lo;
     const double a = n.number_or("spacing", 2 * r, 2 * r, kInf, false, true);  // centre spacing

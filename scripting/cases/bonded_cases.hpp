@@ -35,7 +35,8 @@ struct Cantilever {
 // viscous damping to an unbalanced-force ratio. L = 0.201 m, E = 70 GPa,
 // ν = 0.33, σ_ult = 310 MPa (thesis Table 4); rows chosen so the height is
 // closest to 6.196 mm.
-Cantilever static_cantilever(double radius, double load, double ratio);
+// clamp_rotation false: the clamped balls keep their spin free (a pinned row).
+Cantilever static_cantilever(double radius, double load, double ratio, bool clamp_rotation = true);
 
 struct VelocityFailure {
     double reaction = 0;     // force on the driven ball when the first bond broke, N

@@ -99,7 +99,7 @@ std::vector<double> exercising_properties(const plab_contact_model_desc& d) {
         double x = q.default_value;
         if (x == 0 && std::isfinite(q.min_value))
             x = std::isfinite(q.max_value) ? q.min_value + 0.3 * (q.max_value - q.min_value) : q.min_value + 0.5;
-        if (std::string(q.key) == "dp_mode") x = 0;  // modes are whole numbers
+        if (q.flags & PLAB_INTEGER) x = std::floor(x);  // modes and counts are whole numbers
         v.push_back(x);
     }
     return v;

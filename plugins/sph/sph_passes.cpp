@@ -1,0 +1,253 @@
+// Passes of weakly compressible SPH (companions of the `sph` contact model):
+//   sph_eos                  PRE_FORCE: Tait equation of state (thesis eq. 80;
+//                            Islam eq. 4) p = B((ρ/ρ0)^γ - 1), B = ρ0 c0²/γ.
+//                            At its first run (t = 0) it also sets the initial
+//                            density: ρ0 for boundary balls, and for fluid
+//                            balls the hydrostatic profile by the inverse EOS
+//                            ρ = ρ0 (1 + ρ0 g (H - y)/B)^(1/γ) (thesis §5.2).
+//   sph_density_integration  INTEGRATE: ρ += dt dρ/dt, with dρ/dt the
+//                            continuity sum (thesis eq. 7) the `sph` model
+//                            accumulated in this step's force pass.
+// Fixed boundary balls (thesis §2.2.4) keep ρ = ρ0 and p = 0: both passes
+// skip the group whose index is `boundary_group` (groups are numbered in
+// the order the scene first names them, bodies before walls; -1: none).
+// The pass view carries no fixity, hence a group rather than "fixed DOFs".
+#include "../../contact_models/sph/sph_kernels.hpp"
+
+#include <plab/pass.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+constexpr plab_property_desc boundary_group_desc = {
+    "boundary_group", "group index of fixed boundary balls", "1", -1.0, -1.0, 1e9, PLAB_INTEGER,
+    "their density stays rho0 (thesis 2.2.4); groups are numbered in the order the scene first names them; -1: none"};
+
+struct SphEos {
+    static constexpr const char* name = "sph_eos";
+    static constexpr const char* doc =
+        "Tait equation of state p = B((rho/rho0)^gamma - 1), B = rho0 c0^2/gamma (thesis eq. 80). At its first run "
+        "sets the initial density: rho0 on boundary balls, hydrostatic (inverse EOS) on the others when "
+        "hydrostatic_gravity > 0.";
+    static constexpr uint32_t phase = PLAB_PHASE_PRE_FORCE;
+    static constexpr uint32_t stage = 10;  // after any pass that edits densities
+    enum Prop : int { rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, prop_count };
+    static constexpr plab_property_desc properties[] = {
+        {"rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"},
+        {"speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0, inf,
+         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in the sph contact model; B = rho0 c0^2/gamma"},
+        {"gamma", "polytropic exponent", "1", 7.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "7 for water"},
+        boundary_group_desc,
+        {"hydrostatic_gravity", "gravity for the initial hydrostatic density", "m/s2", 0.0, 0.0, inf,
+         PLAB_MAX_EXCLUSIVE, "g of the initial profile; 0: uniform rho0"},
+        {"surface_level", "free-surface height H of the initial profile", "m", 0.0, -inf, inf,
+         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "vertical coordinate (y in 2D, z in 3D) of the free surface"},
+    };
+    static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
+    enum Field : int { density, pressure };
+    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0}};
+
+    explicit SphEos(const double* p)
+        : rho0_(p[rest_density]), gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
+          boundary_(int(p[boundary_group])), g_(p[hydrostatic_gravity]), surface_(p[surface_level]) {}
+
+    void run(const plab_pass_view& v) {
+        if (!initialised_) initialise(v);
+        double* rho = v.fields[density];
+        double* p = v.fields[pressure];
+        for (uint32_t i = 0; i < v.body_count; ++i) p[i] = b_ * (std::pow(rho[i] / rho0_, gamma_) - 1.0);
+    }
+
+private:
+    // Inverse of eq. 80 for p = ρ0 g (H - y): the particles start in
+    // hydrostatic balance instead of ringing from a uniform density.
+    void initialise(const plab_pass_view& v) {
+        const int up = int(v.dim) - 1;  // y in 2D, z in 3D
+        double* rho = v.fields[density];
+        for (uint32_t i = 0; i < v.body_count; ++i) {
+            rho[i] = rho0_;
+            if (v.group[i] == boundary_ || g_ <= 0) continue;
+            const double p = rho0_ * g_ * (surface_ - v.position[3 * i + up]);
+            rho[i] = rho0_ * std::pow(std::max(1.0 + p / b_, 0.0), 1.0 / gamma_);
+        }
+        initialised_ = true;
+    }
+
+    double rho0_, gamma_, b_;
+    int boundary_;
+    double g_, surface_;
+    bool initialised_ = false;
+};
+
+// Continuity (thesis eq. 7) as the density half of a symplectic step: after
+// the drift, before the EOS, ρ_i += dt Σ_j m_j (v_i - v_j)·∇_i W_ij with the
+// half-step velocities and the new positions, over the SPH pairs of the
+// latest contact list. The force at x^n then sees ρ^n, which already holds
+// v^(n-1/2). Integrating the `sph` model's own sph_drho_dt after the force
+// pass (sph_density_integration) lags one step: the pressure force sees
+// ρ^(n-1), the ρ–v coupling becomes explicit Euler and the acoustic modes
+// grow by sqrt(1 + (ω dt)²) per step (docs/sph.md).
+struct SphContinuity {
+    static constexpr const char* name = "sph_continuity";
+    static constexpr const char* doc =
+        "Symplectic continuity update before the force pass: rho_i += dt sum_j m_j v_ij . grad_i W_ij (thesis eq. 7) "
+        "over the latest contact list, at the new positions and half-step velocities. Kernel and h as in the sph model.";
+    static constexpr uint32_t phase = PLAB_PHASE_PRE_FORCE;
+    static constexpr uint32_t stage = 0;  // before sph_eos
+    enum Prop : int { smoothing_length, kernel, boundary_group, fluid_group, prop_count };
+    static constexpr plab_property_desc properties[] = {
+        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"},
+        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER,
+         "as in the sph contact model: 0 Wendland C2, 1 cubic spline, 2 quintic"},
+        boundary_group_desc,
+        {"fluid_group", "group index of fluid balls", "1", -1.0, -1.0, 1e9, PLAB_INTEGER,
+         "pairs count when each end is fluid or boundary; -1: every ball is fluid (an SPH-only scene)"},
+    };
+    static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
+    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}};
+
+    explicit SphContinuity(const double* p)
+        : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), boundary_(int(p[boundary_group])),
+          fluid_(int(p[fluid_group])) {}
+
+    void run(const plab_pass_view& v) const {
+        if (v.dt <= 0) return;  // a re-evaluation (prepare), not a step
+        const plab::sph::Kernel W{kind_, int(v.dim), h_};
+        double* rho = v.fields[0];
+        for (uint32_t k = 0; k < v.contact_count; ++k) {
+            if (v.contact_end2_is_wall[k]) continue;
+            const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
+            if (!is_sph(v.group[i]) || !is_sph(v.group[j])) continue;
+            const double* xi = v.position + 3 * i;
+            const double* xj = v.position + 3 * j;
+            const double d[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
+            const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if (r <= 0 || r >= W.support()) continue;
+            const double* vi = v.velocity + 3 * i;
+            const double* vj = v.velocity + 3 * j;
+            // v_ij·∇_i W_ij = (v_i - v_j)·(x_i - x_j)/r dW/dr, the same for both ends
+            const double rate = ((vi[0] - vj[0]) * d[0] + (vi[1] - vj[1]) * d[1] + (vi[2] - vj[2]) * d[2]) / r *
+                                W.derivative(r);
+            if (v.group[i] != boundary_) rho[i] += v.dt * v.mass[j] * rate;
+            if (v.group[j] != boundary_) rho[j] += v.dt * v.mass[i] * rate;
+        }
+    }
+
+private:
+    bool is_sph(int32_t g) const { return fluid_ < 0 || g == fluid_ || g == boundary_; }
+    plab::sph::KernelKind kind_;
+    double h_;
+    int boundary_, fluid_;
+};
+
+// Boundary pressure by extrapolation from the fluid (Islam eqs. 10–11,
+// after Adami et al. 2012), an alternative to the thesis' boundary balls at
+// p = 0: each boundary ball w takes
+//   p_w = (Σ_f p_f W_wf + g·Σ_f ρ_f (x_w - x_f) W_wf) / Σ_f W_wf,
+//   ρ_w = ρ0 (p_w/B + 1)^(1/γ),
+// over its fluid neighbours f (static walls: a_w = 0). With p_w = 0 the
+// wall pushes with half the pressure the fluid needs and the first fluid
+// row is over-compressed (docs/sph.md).
+struct SphWallPressure {
+    static constexpr const char* name = "sph_wall_pressure";
+    static constexpr const char* doc =
+        "Boundary-ball pressure extrapolated from fluid neighbours with the hydrostatic correction (Islam eqs. 10-11), "
+        "density by the inverse EOS. Runs after sph_eos.";
+    static constexpr uint32_t phase = PLAB_PHASE_PRE_FORCE;
+    static constexpr uint32_t stage = 20;  // after sph_eos
+    enum Prop : int { smoothing_length, kernel, rest_density, speed_of_sound, gamma, boundary_group, gx, gy, gz, prop_count };
+    static constexpr plab_property_desc properties[] = {
+        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"},
+        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
+        {"rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in sph_eos"},
+        {"speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0, inf,
+         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in sph_eos"},
+        {"gamma", "polytropic exponent", "1", 7.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in sph_eos"},
+        boundary_group_desc,
+        {"gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
+        {"gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
+        {"gravity_z", "gravity, z", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
+    };
+    static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
+    enum Field : int { density, pressure };
+    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0}};
+
+    explicit SphWallPressure(const double* p)
+        : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), rho0_(p[rest_density]),
+          gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
+          boundary_(int(p[boundary_group])), g_{p[gx], p[gy], p[gz]} {}
+
+    void run(const plab_pass_view& v) {
+        const plab::sph::Kernel W{kind_, int(v.dim), h_};
+        weighted_.assign(v.body_count, 0.0);
+        weights_.assign(v.body_count, 0.0);
+        double* rho = v.fields[density];
+        double* p = v.fields[pressure];
+        for (uint32_t k = 0; k < v.contact_count; ++k) {
+            if (v.contact_end2_is_wall[k]) continue;
+            int32_t w = v.contact_end1[k], f = v.contact_end2[k];
+            if (v.group[f] == boundary_) std::swap(w, f);
+            if (v.group[w] != boundary_ || v.group[f] == boundary_) continue;  // one wall ball, one fluid ball
+            const double* xw = v.position + 3 * w;
+            const double* xf = v.position + 3 * f;
+            const double d[3] = {xw[0] - xf[0], xw[1] - xf[1], xw[2] - xf[2]};
+            const double kernel_value = W.value(std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+            const double g_dot_d = g_[0] * d[0] + g_[1] * d[1] + g_[2] * d[2];
+            weighted_[w] += (p[f] + rho[f] * g_dot_d) * kernel_value;
+            weights_[w] += kernel_value;
+        }
+        for (uint32_t i = 0; i < v.body_count; ++i) {
+            if (v.group[i] != boundary_) continue;
+            p[i] = weights_[i] > 0 ? weighted_[i] / weights_[i] : 0.0;
+            rho[i] = rho0_ * std::pow(std::max(p[i] / b_ + 1.0, 0.0), 1.0 / gamma_);
+        }
+    }
+
+private:
+    plab::sph::KernelKind kind_;
+    double h_, rho0_, gamma_, b_;
+    int boundary_;
+    double g_[3];
+    std::vector<double> weighted_, weights_;
+};
+
+struct SphDensityIntegration {
+    static constexpr const char* name = "sph_density_integration";
+    static constexpr const char* doc =
+        "rho += dt * drho/dt (continuity, thesis eq. 7) after the law of motion; boundary balls keep their density.";
+    static constexpr uint32_t phase = PLAB_PHASE_INTEGRATE;
+    static constexpr uint32_t stage = 0;
+    static constexpr plab_property_desc properties[] = {boundary_group_desc};
+    enum Field : int { density, drho_dt };
+    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}, {"sph_drho_dt", "kg/(m3 s)", 0.0}};
+
+    explicit SphDensityIntegration(const double* p) : boundary_(int(p[0])) {}
+
+    void run(const plab_pass_view& v) const {
+        double* rho = v.fields[density];
+        const double* rate = v.fields[drho_dt];
+        for (uint32_t i = 0; i < v.body_count; ++i)
+            if (v.group[i] != boundary_) rho[i] += v.dt * rate[i];
+    }
+
+private:
+    int boundary_;
+};
+
+} // namespace
+
+PLAB_PLUGIN(plab::add_pass<SphContinuity>(r) != 0 ? 1
+            : plab::add_pass<SphEos>(r) != 0     ? 1
+            : plab::add_pass<SphWallPressure>(r) != 0 ? 1
+                                                 : plab::add_pass<SphDensityIntegration>(r))

@@ -1,0 +1,42 @@
+// Measurements behind the SPH validation cases (contact model `sph`, passes
+// `sph_eos` and `sph_density_integration`). tests/physics/sph_test.cpp calls
+// the same functions and asserts the physics with stated tolerances.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+namespace plab::cases {
+
+// Thesis §5.1, Table 1: a 2D tank of fluid at rest under gravity, walls of
+// fixed boundary balls (thesis §2.2.4) at half the fluid spacing, density
+// initialised hydrostatically by the inverse EOS.
+struct StaticTankSpec {
+    int columns = 30, rows = 30;   // fluid particles across and up
+    double spacing = 0.005;        // fluid particle spacing dp, m
+    double h_over_dp = 1.0;        // smoothing length / dp (Table 1: h = dp)
+    int kernel = 0;                // 0 Wendland C2, 1 cubic spline, 2 quintic
+    int boundary_layers = 4;       // layers of boundary balls at dp/2
+    double speed_of_sound = 0;     // m/s; 0: 10 sqrt(2 g H) (thesis: v_max = sqrt(2 g D))
+    double viscosity = 8.9e-4;     // Pa s, Morris laminar (Table 1)
+    double alpha = 0;              // > 0: Monaghan artificial viscosity instead of the laminar one
+    double end_time = 1.0;         // s
+    bool wall_pressure = true;     // boundary pressure extrapolated (Islam eqs. 10-11); false: thesis p = 0
+};
+
+struct StaticTankResult {
+    // ||p - rho0 g (H - y)|| / ||rho0 g (H - y)|| over the fluid, top two rows
+    // excluded: of the pressures and heights averaged over the last 20 % of
+    // the run (filters the acoustic ringing, period 2H/c0), and at the end
+    double pressure_l2 = 0, pressure_l2_instant = 0;
+    double max_displacement = 0;   // largest fluid-particle displacement from its start, m
+    double min_wall_clearance = 0; // smallest distance of a fluid centre inside the tank walls, m (< 0: crossed)
+    double max_speed = 0;          // largest fluid speed at the end, m/s
+    double cpu_seconds = 0;
+    long steps = 0;
+    int fluid = 0, boundary = 0;
+};
+
+nlohmann::json static_tank_scene(const StaticTankSpec& s);
+StaticTankResult static_tank(const StaticTankSpec& s);
+
+} // namespace plab::cases
