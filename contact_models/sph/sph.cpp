@@ -7,8 +7,9 @@
 //     linear momentum is conserved to round-off.
 // Viscosity: Morris laminar (thesis eq. 14) or Monaghan artificial
 // (Islam eqs. 8–9). Optional anti-clump term R_ij (thesis eq. 17).
-// Pressures come from the `sph_eos` pass (plugins/sph), densities are
-// integrated by `sph_density_integration`; see docs/sph.md.
+// The continuity sum is accumulated in the host's rates stage; the passes
+// `sph_density_integration`, `sph_eos` and `sph_wall_pressure` (phase
+// RATES_DONE) turn it into density and pressure before the force stage.
 //
 // Conventions: n is the unit normal from end 1 to end 2, x_2 - x_1 = r n,
 // v_rel = v_2 - v_1; dW/dr <= 0 and ∇_2 W_21 = dW/dr n = -∇_1 W_12.
@@ -33,7 +34,7 @@ struct Sph {
     static constexpr const char* doc =
         "Weakly compressible SPH pair interaction (thesis eqs. 7, 11-17; Islam eqs. 5, 8-9): continuity term "
         "into sph_drho_dt of both ends, symmetric pressure + viscous force m1 m2 (p1/rho1^2 + p2/rho2^2 + Pi) grad W. "
-        "Use with the sph_eos and sph_density_integration passes; fluid balls must have their rotation fixed "
+        "Use with the sph_density_integration and sph_eos passes; fluid balls must have their rotation fixed "
         "(the laminar viscous force is not central).";
     static constexpr const char* timestep_rule =
         "per pair: CFL 0.25 h/(c0 + |v_rel|); laminar viscosity also 0.125 h^2 rho0/mu";
@@ -85,6 +86,11 @@ struct Sph {
         if (dp_ >= plab::sph::support_factor(kind_) * h_) anticlump_ = 0;
     }
 
+    // The host calls the law twice per cycle (rates_stage): first for the
+    // continuity sum, which the passes turn into density and pressure at the
+    // new positions, then for the pair force with those pressures.
+    static constexpr bool rates_stage = true;
+
     void law(const Contact& c) const {
         const Vec3 v_rel = c.rel_velocity();
         c.set_dt_limit(step_limit(plab::norm(v_rel)));
@@ -95,12 +101,15 @@ struct Sph {
         const Vec3 n = c.normal();
         const double dW = W.derivative(r);  // <= 0
         const double m1 = c.mass1(), m2 = c.mass2();
-        const double rho1 = density_or_rest(c.field1(density)), rho2 = density_or_rest(c.field2(density));
         const double v_n = plab::dot(v_rel, n);  // < 0 while approaching
 
-        // eq. 7: dρ_i/dt = Σ m_j v_ij·∇_i W_ij; both ends get m_other dW/dr (v_rel·n)
-        c.accumulate1(drho_dt, m2 * dW * v_n);
-        c.accumulate2(drho_dt, m1 * dW * v_n);
+        if (c.rates_stage()) {
+            // eq. 7: dρ_i/dt = Σ m_j v_ij·∇_i W_ij; both ends get m_other dW/dr (v_rel·n)
+            c.accumulate1(drho_dt, m2 * dW * v_n);
+            c.accumulate2(drho_dt, m1 * dW * v_n);
+            return;
+        }
+        const double rho1 = density_or_rest(c.field1(density)), rho2 = density_or_rest(c.field2(density));
 
         // eqs. 15–16: m_2 dv_2/dt = -m_1 m_2 (p1/ρ1² + p2/ρ2² + Π + R) ∇_2 W_21
         const double p_term = c.field1(pressure) / (rho1 * rho1) + c.field2(pressure) / (rho2 * rho2);

@@ -1,17 +1,23 @@
-// Passes of weakly compressible SPH (companions of the `sph` contact model):
-//   sph_eos                  PRE_FORCE: Tait equation of state (thesis eq. 80;
-//                            Islam eq. 4) p = B((ρ/ρ0)^γ - 1), B = ρ0 c0²/γ.
-//                            At its first run (t = 0) it also sets the initial
+// Passes of weakly compressible SPH (companions of the `sph` contact model),
+// all in phase RATES_DONE: after the host's rates stage, where the model
+// accumulated the continuity sum (thesis eq. 7) at the new positions and
+// half-step velocities, and before the force stage. In stage order:
+//   sph_density_integration  ρ += dt dρ/dt — the density is then in step with
+//                            the positions (integrating after the forces
+//                            instead lags the pressure a step: unstable).
+//   sph_eos                  Tait equation of state (thesis eq. 80; Islam
+//                            eq. 4) p = B((ρ/ρ0)^γ - 1), B = ρ0 c0²/γ. At its
+//                            first run (t = 0) it also sets the initial
 //                            density: ρ0 for boundary balls, and for fluid
 //                            balls the hydrostatic profile by the inverse EOS
 //                            ρ = ρ0 (1 + ρ0 g (H - y)/B)^(1/γ) (thesis §5.2).
-//   sph_density_integration  INTEGRATE: ρ += dt dρ/dt, with dρ/dt the
-//                            continuity sum (thesis eq. 7) the `sph` model
-//                            accumulated in this step's force pass.
-// Fixed boundary balls (thesis §2.2.4) keep ρ = ρ0 and p = 0: both passes
-// skip the group whose index is `boundary_group` (groups are numbered in
-// the order the scene first names them, bodies before walls; -1: none).
-// The pass view carries no fixity, hence a group rather than "fixed DOFs".
+//   sph_wall_pressure        boundary-ball pressure from the fluid (Islam
+//                            eqs. 10–11), optional.
+// Fixed boundary balls (thesis §2.2.4) keep ρ = ρ0 (and p = 0 without
+// sph_wall_pressure): the passes skip the group whose index is
+// `boundary_group` (groups are numbered in the order the scene first names
+// them, bodies before walls; -1: none). The pass view carries no fixity,
+// hence a group rather than "fixed DOFs".
 #include "../../contact_models/sph/sph_kernels.hpp"
 
 #include <plab/pass.hpp>
@@ -36,8 +42,8 @@ struct SphEos {
         "Tait equation of state p = B((rho/rho0)^gamma - 1), B = rho0 c0^2/gamma (thesis eq. 80). At its first run "
         "sets the initial density: rho0 on boundary balls, hydrostatic (inverse EOS) on the others when "
         "hydrostatic_gravity > 0.";
-    static constexpr uint32_t phase = PLAB_PHASE_PRE_FORCE;
-    static constexpr uint32_t stage = 10;  // after any pass that edits densities
+    static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
+    static constexpr uint32_t stage = 10;  // after sph_density_integration
     enum Prop : int { rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, prop_count };
     static constexpr plab_property_desc properties[] = {
         {"rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
@@ -87,68 +93,6 @@ private:
     bool initialised_ = false;
 };
 
-// Continuity (thesis eq. 7) as the density half of a symplectic step: after
-// the drift, before the EOS, ρ_i += dt Σ_j m_j (v_i - v_j)·∇_i W_ij with the
-// half-step velocities and the new positions, over the SPH pairs of the
-// latest contact list. The force at x^n then sees ρ^n, which already holds
-// v^(n-1/2). Integrating the `sph` model's own sph_drho_dt after the force
-// pass (sph_density_integration) lags one step: the pressure force sees
-// ρ^(n-1), the ρ–v coupling becomes explicit Euler and the acoustic modes
-// grow by sqrt(1 + (ω dt)²) per step (docs/sph.md).
-struct SphContinuity {
-    static constexpr const char* name = "sph_continuity";
-    static constexpr const char* doc =
-        "Symplectic continuity update before the force pass: rho_i += dt sum_j m_j v_ij . grad_i W_ij (thesis eq. 7) "
-        "over the latest contact list, at the new positions and half-step velocities. Kernel and h as in the sph model.";
-    static constexpr uint32_t phase = PLAB_PHASE_PRE_FORCE;
-    static constexpr uint32_t stage = 0;  // before sph_eos
-    enum Prop : int { smoothing_length, kernel, boundary_group, fluid_group, prop_count };
-    static constexpr plab_property_desc properties[] = {
-        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"},
-        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER,
-         "as in the sph contact model: 0 Wendland C2, 1 cubic spline, 2 quintic"},
-        boundary_group_desc,
-        {"fluid_group", "group index of fluid balls", "1", -1.0, -1.0, 1e9, PLAB_INTEGER,
-         "pairs count when each end is fluid or boundary; -1: every ball is fluid (an SPH-only scene)"},
-    };
-    static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
-    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}};
-
-    explicit SphContinuity(const double* p)
-        : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), boundary_(int(p[boundary_group])),
-          fluid_(int(p[fluid_group])) {}
-
-    void run(const plab_pass_view& v) const {
-        if (v.dt <= 0) return;  // a re-evaluation (prepare), not a step
-        const plab::sph::Kernel W{kind_, int(v.dim), h_};
-        double* rho = v.fields[0];
-        for (uint32_t k = 0; k < v.contact_count; ++k) {
-            if (v.contact_end2_is_wall[k]) continue;
-            const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
-            if (!is_sph(v.group[i]) || !is_sph(v.group[j])) continue;
-            const double* xi = v.position + 3 * i;
-            const double* xj = v.position + 3 * j;
-            const double d[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
-            const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            if (r <= 0 || r >= W.support()) continue;
-            const double* vi = v.velocity + 3 * i;
-            const double* vj = v.velocity + 3 * j;
-            // v_ij·∇_i W_ij = (v_i - v_j)·(x_i - x_j)/r dW/dr, the same for both ends
-            const double rate = ((vi[0] - vj[0]) * d[0] + (vi[1] - vj[1]) * d[1] + (vi[2] - vj[2]) * d[2]) / r *
-                                W.derivative(r);
-            if (v.group[i] != boundary_) rho[i] += v.dt * v.mass[j] * rate;
-            if (v.group[j] != boundary_) rho[j] += v.dt * v.mass[i] * rate;
-        }
-    }
-
-private:
-    bool is_sph(int32_t g) const { return fluid_ < 0 || g == fluid_ || g == boundary_; }
-    plab::sph::KernelKind kind_;
-    double h_;
-    int boundary_, fluid_;
-};
-
 // Boundary pressure by extrapolation from the fluid (Islam eqs. 10–11,
 // after Adami et al. 2012), an alternative to the thesis' boundary balls at
 // p = 0: each boundary ball w takes
@@ -162,7 +106,7 @@ struct SphWallPressure {
     static constexpr const char* doc =
         "Boundary-ball pressure extrapolated from fluid neighbours with the hydrostatic correction (Islam eqs. 10-11), "
         "density by the inverse EOS. Runs after sph_eos.";
-    static constexpr uint32_t phase = PLAB_PHASE_PRE_FORCE;
+    static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 20;  // after sph_eos
     enum Prop : int { smoothing_length, kernel, rest_density, speed_of_sound, gamma, boundary_group, gx, gy, gz, prop_count };
     static constexpr plab_property_desc properties[] = {
@@ -225,8 +169,9 @@ private:
 struct SphDensityIntegration {
     static constexpr const char* name = "sph_density_integration";
     static constexpr const char* doc =
-        "rho += dt * drho/dt (continuity, thesis eq. 7) after the law of motion; boundary balls keep their density.";
-    static constexpr uint32_t phase = PLAB_PHASE_INTEGRATE;
+        "rho += dt * drho/dt (continuity, thesis eq. 7) with the rate at the new positions and half-step velocities, "
+        "before the EOS and the forces; boundary balls keep their density.";
+    static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 0;
     static constexpr plab_property_desc properties[] = {boundary_group_desc};
     enum Field : int { density, drho_dt };
@@ -247,7 +192,6 @@ private:
 
 } // namespace
 
-PLAB_PLUGIN(plab::add_pass<SphContinuity>(r) != 0 ? 1
-            : plab::add_pass<SphEos>(r) != 0     ? 1
+PLAB_PLUGIN(plab::add_pass<SphEos>(r) != 0     ? 1
             : plab::add_pass<SphWallPressure>(r) != 0 ? 1
                                                  : plab::add_pass<SphDensityIntegration>(r))

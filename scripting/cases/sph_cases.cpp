@@ -46,8 +46,7 @@ json static_tank_scene(const StaticTankSpec& s) {
     json passes = {{{"name", "sph_eos"},
                     {"properties", {{"rest_density", rho0}, {"speed_of_sound", c0}, {"gamma", gamma_tait},
                                     {"boundary_group", boundary_group}, {"hydrostatic_gravity", g}, {"surface_level", H}}}},
-                   {{"name", "sph_continuity"},
-                    {"properties", {{"smoothing_length", h}, {"kernel", s.kernel}, {"boundary_group", boundary_group}}}}};
+                   {{"name", "sph_density_integration"}, {"properties", {{"boundary_group", boundary_group}}}}};
     if (s.wall_pressure)
         passes.push_back({{"name", "sph_wall_pressure"},
                           {"properties", {{"smoothing_length", h}, {"kernel", s.kernel}, {"rest_density", rho0},

@@ -75,6 +75,7 @@ std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state
     b.slip_energy = slip.data(); b.dashpot_energy = dash.data(); b.stiffness_translational = kt.data();
     b.stiffness_rotational = kr.data(); b.dt_limit = dtl.data(); b.accumulate1 = acc1.data(); b.accumulate2 = acc2.data();
     b.break_energy = brk.data();
+    b.stage = PLAB_STAGE_FORCES;
     REQUIRE(d.compute(state, props.data(), &b) == 0);
     std::vector<ContactOutput> out(n);
     for (std::size_t k = 0; k < n; ++k) {

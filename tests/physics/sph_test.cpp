@@ -76,7 +76,7 @@ json free_blob(int dim) {
                          {"jitter", {{"position", 0.1 * dp}, {"velocity", 0.3}, {"seed", 3}}}}}},
             {"contact_models", {{{"groups", {"fluid", "fluid"}}, {"model", "sph"},
                                  {"properties", {{"smoothing_length", h}, {"kernel", 0}, {"viscosity", 0}, {"speed_of_sound", 10}, {"mu", 1e-3}}}}}},
-            {"passes", {{{"name", "sph_continuity"}, {"properties", {{"smoothing_length", h}, {"kernel", 0}}}},
+            {"passes", {{{"name", "sph_density_integration"}},
                         {{"name", "sph_eos"}, {"properties", {{"speed_of_sound", 10}}}}}}};
 }
 

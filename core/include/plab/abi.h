@@ -123,7 +123,16 @@ typedef struct plab_contact_batch {
     double* const* accumulate1;
     double* const* accumulate2;
     double* break_energy;    /* elastic energy a bond released by breaking this step, J */
+    uint32_t stage;          /* PLAB_STAGE_FORCES, or PLAB_STAGE_RATES for a model with rates_stage */
 } plab_contact_batch;
+
+/* Stages of the force-displacement phase. A model with `rates_stage` is
+ * called twice per cycle over the same geometry: first to accumulate field
+ * rates (e.g. the SPH continuity sum), then — after the passes of phase
+ * PLAB_PHASE_RATES_DONE have turned rates into states (density, pressure) —
+ * to compute forces. Other models see only PLAB_STAGE_FORCES. */
+#define PLAB_STAGE_FORCES 0u
+#define PLAB_STAGE_RATES 1u
 
 typedef struct plab_contact_model_desc {
     const char* name; /* as named in scenes, e.g. "linear" */
@@ -153,6 +162,9 @@ typedef struct plab_contact_model_desc {
      *   = 0  unbonded: ordinary activity range
      * The host's `bond` command sets it to 1 on chosen contacts. */
     int32_t persist_slot;
+    /* 1: call compute() in the rates stage too (see PLAB_STAGE_RATES); its
+     * accumulations are summed after that stage, not after the force stage */
+    uint32_t rates_stage;
 } plab_contact_model_desc;
 
 #define PLAB_BREAK_TENSION 1
@@ -163,6 +175,7 @@ typedef struct plab_contact_model_desc {
 #define PLAB_PHASE_PRE_FORCE 0u  /* after detection, before force-displacement */
 #define PLAB_PHASE_POST_FORCE 1u /* after forces are summed onto bodies */
 #define PLAB_PHASE_INTEGRATE 2u  /* after the law of motion, integrate own fields */
+#define PLAB_PHASE_RATES_DONE 3u /* after the rates stage, before forces: rates → states */
 
 typedef struct plab_pass_view {
     uint32_t dim;

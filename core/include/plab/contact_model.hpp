@@ -19,7 +19,8 @@
 //
 // Optional members: `fields_read[]`, `fields_accumulated[]`
 // (plab_field_desc arrays) to read body fields / accumulate into them;
-// `persist_slot` (int) for a model with bonds (see abi.h).
+// `persist_slot` (int) for a model with bonds; `rates_stage` (bool) for a
+// model that accumulates field rates before forces (SPH; see abi.h).
 #ifndef PLAB_CONTACT_MODEL_HPP
 #define PLAB_CONTACT_MODEL_HPP
 
@@ -49,6 +50,8 @@ public:
     bool with_wall() const { return b_.end2_is_wall != 0; }
     int32_t end1() const { return b_.end1[k_]; }
     int32_t end2() const { return b_.end2[k_]; }
+    // true in the rates stage of a model with `rates_stage` (abi.h)
+    bool rates_stage() const { return b_.stage == PLAB_STAGE_RATES; }
 
     Vec3 normal() const { return load(b_.normal); }
     double gap() const { return b_.gap[k_]; }
@@ -112,6 +115,8 @@ template <class M, class = void> struct has_fields_acc : std::false_type {};
 template <class M> struct has_fields_acc<M, std::void_t<decltype(M::fields_accumulated)>> : std::true_type {};
 template <class M, class = void> struct has_persist : std::false_type {};
 template <class M> struct has_persist<M, std::void_t<decltype(M::persist_slot)>> : std::true_type {};
+template <class M, class = void> struct has_rates : std::false_type {};
+template <class M> struct has_rates<M, std::void_t<decltype(M::rates_stage)>> : std::true_type {};
 template <class M, class = void> struct has_history : std::false_type {};
 template <class M> struct has_history<M, std::void_t<decltype(M::history)>> : std::true_type {};
 
@@ -175,6 +180,7 @@ template <class M> const plab_contact_model_desc* contact_model_desc() {
         x.compute = &detail::compute<M>;
         x.persist_slot = -1;
         if constexpr (detail::has_persist<M>::value) x.persist_slot = M::persist_slot;
+        if constexpr (detail::has_rates<M>::value) x.rates_stage = M::rates_stage ? 1u : 0u;
         return x;
     }();
     return &d;

@@ -110,7 +110,7 @@ void World::resolve_wall_features(ContactSet& s) {
     }
 }
 
-void World::compute(ModelInstance& inst, ContactSet& s) {
+void World::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
     const std::size_t n = s.size();
     if (n == 0) return;
     std::fill(s.force.begin(), s.force.end(), 0.0);
@@ -167,6 +167,7 @@ void World::compute(ModelInstance& inst, ContactSet& s) {
         batch.accumulate1 = a1.data();
         batch.accumulate2 = a2.data();
         batch.break_energy = s.break_energy.data() + o;
+        batch.stage = stage;
         if (inst.desc->compute(inst.state, inst.props.data(), &batch) != 0) failed = 1;
     }
     if (failed)
@@ -201,7 +202,8 @@ void World::reduce() {
     const std::size_t n = bodies.size();
     constexpr std::uint32_t end2_bit = 1u << 31;
     for (auto& inst : instances_)
-        for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
+        if (!inst->desc->rates_stage)
+            for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
     double local_work = 0;
 #pragma omp parallel for schedule(static) reduction(+ : local_work) if (n >= parallel_min)
     for (std::size_t i = 0; i < n; ++i) {
@@ -222,6 +224,7 @@ void World::reduce() {
             kt += s.k_t[k];
             kr += s.k_r[k] + s.k_t[k] * arm.squaredNorm();
             const ModelInstance& owner = *set_owner_[en.set];
+            if (owner.desc->rates_stage) continue;  // summed after the rates stage
             for (std::size_t a = 0; a < owner.fields_accumulated.size(); ++a)
                 fields_[owner.fields_accumulated[a]][i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
         }
@@ -263,16 +266,51 @@ void World::reduce() {
             w.moment += (Vec(&s.point[3 * k]) - w.centre).cross(fc) + Vec(&s.moment2[3 * k]);
         }
     }
-    if (!passes_.empty()) {  // active contact list for passes, only when one is loaded
-        pc_end1_.clear(); pc_end2_.clear(); pc_wall_.clear();
-        for (const ContactSet* s : sets_)
-            for (std::size_t k = 0; k < s->size(); ++k)
-                if (s->active[k]) {
-                    pc_end1_.push_back(s->end1[k]);
-                    pc_end2_.push_back(s->end2[k]);
-                    pc_wall_.push_back(s->with_wall);
-                }
+}
+
+// Active contacts after this cycle's detection and geometry, for passes
+// (built only when a pass is loaded).
+void World::build_pass_contacts() {
+    if (passes_.empty()) return;
+    pc_end1_.clear(); pc_end2_.clear(); pc_wall_.clear();
+    for (const ContactSet* s : sets_)
+        for (std::size_t k = 0; k < s->size(); ++k)
+            if (s->active[k]) {
+                pc_end1_.push_back(s->end1[k]);
+                pc_end2_.push_back(s->end2[k]);
+                pc_wall_.push_back(s->with_wall);
+            }
+}
+
+// Models with a rates stage accumulate field rates (SPH continuity) over
+// this cycle's geometry; the sums land in their fields, then the passes of
+// phase RATES_DONE turn them into states before any force is computed.
+void World::rates_stage() {
+    bool any = false;
+    for (auto& inst : instances_) {
+        if (!inst->desc->rates_stage) continue;
+        any = true;
+        for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
+        compute(*inst, inst->balls, PLAB_STAGE_RATES);
+        compute(*inst, inst->walls, PLAB_STAGE_RATES);
     }
+    if (!any) return;
+    constexpr std::uint32_t end2_bit = 1u << 31;
+    const std::size_t n = bodies.size();
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
+            const Entry en = entries_[e];
+            const ModelInstance& owner = *set_owner_[en.set];
+            if (!owner.desc->rates_stage) continue;
+            const ContactSet& s = *sets_[en.set];
+            const std::uint32_t k = en.row & ~end2_bit;
+            if (!s.active[k]) continue;
+            const bool is_end2 = en.row & end2_bit;
+            for (std::size_t a = 0; a < owner.fields_accumulated.size(); ++a)
+                fields_[owner.fields_accumulated[a]][i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
+        }
+    run_passes(PLAB_PHASE_RATES_DONE);
 }
 
 StableStep World::stable_timestep() {

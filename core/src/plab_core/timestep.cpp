@@ -54,6 +54,7 @@ StableStep probe_contact(const ModelInstance& inst, int dim, const Probe& a, con
     batch.accumulate1 = acc1.data(); batch.accumulate2 = acc2.data();
     double released = 0;
     batch.break_energy = &released;
+    batch.stage = PLAB_STAGE_FORCES;
     if (inst.desc->compute(inst.state, inst.props.data(), &batch) != 0)
         throw PluginError("contact model '" + inst.model + "' failed on a nominal touching contact");
     StableStep out;

@@ -225,8 +225,12 @@ void World::force_pass() {
             geometry(*inst, inst->balls);
             geometry(*inst, inst->walls);
             resolve_wall_features(inst->walls);
-            compute(*inst, inst->balls);
-            compute(*inst, inst->walls);
+        }
+        build_pass_contacts();
+        rates_stage();
+        for (auto& inst : instances_) {
+            compute(*inst, inst->balls, PLAB_STAGE_FORCES);
+            compute(*inst, inst->walls, PLAB_STAGE_FORCES);
         }
     }
     {

@@ -197,7 +197,9 @@ private:
     bool displacement_exceeds_skin() const;
     void geometry(ModelInstance& inst, ContactSet& set);
     void resolve_wall_features(ContactSet& set);
-    void compute(ModelInstance& inst, ContactSet& set);
+    void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
+    void rates_stage();
+    void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);
     void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
                            std::vector<std::array<std::int32_t, 2>>& pairs) const;
