@@ -88,7 +88,35 @@ TEST_CASE("a model returning NaN stops the run with a diagnostic naming the ball
     Simulation sim(scene);
     sim.set_quiet(true);
     CHECK_THROWS_WITH(sim.cycle(20000), Contains("non-finite state of ball id") && Contains("at step") &&
-                                           Contains("contact model returned NaN"));
+                                           Contains("contact model returned NaN") &&
+                                           Contains("back at its last good state"));
+}
+
+TEST_CASE("a run that goes unstable keeps its last good state", "[host][stability]") {
+    json scene = two_balls("nan_model");
+    scene["bodies"][0]["velocity"] = {1.0, 0.0};
+    Simulation sim(scene);
+    sim.set_quiet(true);
+    World& w = sim.world();
+    std::uint64_t failed_at = 0;
+    try {
+        sim.cycle(20000);
+    } catch (const RunError& e) {
+        const std::string msg = e.what();
+        failed_at = std::stoull(msg.substr(msg.find("at step ") + 8));
+    }
+    REQUIRE(failed_at > 0);
+    CHECK(w.step_count % w.snapshot_interval == 0);  // the kept state, not the failed one
+    CHECK(w.step_count < failed_at);
+    CHECK(failed_at - w.step_count <= w.snapshot_interval);
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+        CHECK(w.bodies.position[i].allFinite());
+        CHECK(w.bodies.velocity[i].allFinite());
+    }
+    // and it can go on from there (with a change that avoids the failure)
+    w.bodies.velocity[0] = Vec(-1.0, 0.0, 0.0);
+    w.mark_dirty();
+    CHECK_NOTHROW(sim.cycle(100));
 }
 
 TEST_CASE("an unknown model name lists the models that are available", "[host]") {

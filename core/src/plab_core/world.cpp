@@ -180,6 +180,60 @@ void World::prepare() {
 // kept at whole steps so outputs, energies and restarts are synchronised.
 // Models see the half-step velocity, as in PFC.
 void World::step() {
+    if (snapshot_interval > 0 && (step_count % snapshot_interval == 0 || !snapshot_.valid)) take_snapshot();
+    try {
+        advance();
+    } catch (const RunError& e) {
+        if (!snapshot_.valid) throw;
+        const std::uint64_t failed_at = step_count;
+        restore_snapshot();
+        throw RunError(std::string(e.what()) + "; the world is back at its last good state, step " +
+                       std::to_string(step_count) + " (t = " + std::to_string(time) + " s), " +
+                       std::to_string(failed_at - step_count) + " steps before the failure");
+    }
+}
+
+void World::take_snapshot() {
+    if (!prepared_) prepare();
+    Snapshot& s = snapshot_;
+    s.bodies = bodies;
+    s.walls = walls;
+    s.fields = fields_;
+    s.energies = energies;
+    s.time = time;
+    s.last_dt = last_dt;
+    s.step_count = step_count;
+    s.bond_breaks = bond_breaks.size();
+    s.sets.clear();
+    for (const auto& inst : instances_)
+        for (const ContactSet* c : {&inst->balls, &inst->walls})
+            s.sets.push_back({c->end1, c->end2, c->key1, c->key2, c->history});
+    s.valid = true;
+}
+
+// Contact rows come back with their history; the next step re-detects and
+// re-evaluates forces at this state (dt = 0), as after any change.
+void World::restore_snapshot() {
+    const Snapshot& s = snapshot_;
+    bodies = s.bodies;
+    walls = s.walls;
+    fields_ = s.fields;
+    energies = s.energies;
+    time = s.time;
+    last_dt = s.last_dt;
+    step_count = s.step_count;
+    bond_breaks.resize(s.bond_breaks);
+    std::size_t k = 0;
+    for (auto& inst : instances_)
+        for (ContactSet* c : {&inst->balls, &inst->walls}) {
+            const SetState& st = s.sets[k++];
+            c->end1 = st.end1; c->end2 = st.end2; c->key1 = st.key1; c->key2 = st.key2; c->history = st.history;
+            c->resize_columns(c->end1.size(), int(inst->fields_accumulated.size()));
+        }
+    mark_dirty();
+}
+
+void World::advance() {
     if (!prepared_) prepare();
     double dt;
     {

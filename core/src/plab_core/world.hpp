@@ -146,6 +146,12 @@ public:
     std::size_t intact_bonds() const;
     std::vector<BondBreak> bond_breaks;
 
+    // ---- last good state ----
+    // Every `snapshot_interval` steps (0: never) the world keeps a copy of its
+    // state; a step that goes unstable restores it before the RunError
+    // leaves step(), so outputs and the caller see the last good state.
+    std::uint64_t snapshot_interval = 100;
+
     // ---- measurements ----
     Energies energies;
     // Per-ball average stress (tension positive), PFC's measurement:
@@ -186,6 +192,27 @@ private:
     // active contacts for passes (built only when a pass is loaded)
     std::vector<std::int32_t> pc_end1_, pc_end2_;
     std::vector<std::uint8_t> pc_wall_;
+
+    // the kept copy: contact rows by key and history; geometry is recomputed
+    struct SetState {
+        std::vector<std::int32_t> end1, end2;
+        std::vector<BodyId> key1, key2;
+        std::vector<double> history;
+    };
+    struct Snapshot {
+        bool valid = false;
+        Bodies bodies;
+        Walls walls;
+        std::vector<std::vector<double>> fields;
+        Energies energies;
+        double time = 0, last_dt = 0;
+        std::uint64_t step_count = 0;
+        std::size_t bond_breaks = 0;
+        std::vector<SetState> sets;  // per instance: balls, walls
+    } snapshot_;
+    void take_snapshot();
+    void restore_snapshot();
+    void advance();
 
     double effective_skin() const;
     void resize_fields();
