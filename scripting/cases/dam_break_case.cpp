@@ -22,7 +22,7 @@ constexpr double g = 9.81, rho0 = 1000.0, column_width = 0.1;
 struct DamBreakSpec {
     double spacing = 0.005;      // dp, m
     double h_over_dp = 1.3;
-    double alpha = 0.02;         // Monaghan artificial viscosity
+    double alpha = 0.1;          // Monaghan artificial viscosity (0.02 lets spray lead the front: 8.9 % at a/dp 20)
     double end_T = 3.0;
 };
 
@@ -141,28 +141,27 @@ PLAB_VALIDATION_CASE("dam_break",
                      "thesis 5.2: 2D dam break, surge front x/a vs T = t sqrt(2g/a) against Martin & Moyce (1952), "
                      "T <= 3; resolution and h/dp study",
                      [](bool quick) {
-    // full: the aim, 5 %, on the finest run; quick (a/dp = 10, in CI):
-    // a guard that the coarse front stays within 8 % of the data
-    CaseResult result{0, quick ? 0.08 : 0.05, "mean relative error of x/a against Martin & Moyce (all series, T <= 3)",
-                      ""};
+    // the aim, 5 %: on the finest run (full), on a/dp = 10 (quick, in CI)
+    CaseResult result{0, 0.05, "mean relative error of x/a against Martin & Moyce (all series, T <= 3)", ""};
     std::vector<DamBreakSpec> runs;
     if (quick) {
         runs.push_back({0.01, 1.3});
     } else {
         for (double dp : {0.01, 0.005, 0.0025}) runs.push_back({dp, 1.3});
         for (double hdp : {1.0, 1.5}) runs.push_back({0.005, hdp});
+        runs.push_back({0.005, 1.3, 0.02});  // the low-viscosity reading, for comparison
     }
     char line[300];
     for (const DamBreakSpec& s : runs) {
         const DamBreakResult r = dam_break(s);
         std::snprintf(line, sizeof line,
-                      "    dp %.4f m (a/dp %.0f), h/dp %.2f: %ld fluid balls, %ld steps, cpu %.1f s; front error mean "
+                      "    dp %.4f m (a/dp %.0f), h/dp %.2f, alpha %.2f: %ld fluid balls, %ld steps, cpu %.1f s; front error mean "
                       "%.2f %%, max %.2f %%\n",
-                      s.spacing, column_width / s.spacing, s.h_over_dp, r.fluid, r.steps, r.cpu_seconds,
+                      s.spacing, column_width / s.spacing, s.h_over_dp, s.alpha, r.fluid, r.steps, r.cpu_seconds,
                       100 * r.mean_error, 100 * r.max_error);
         result.details += line;
         // the verdict: the finest run at h/dp 1.3 (the quick run has only one)
-        if (quick || (s.spacing == 0.0025 && s.h_over_dp == 1.3)) result.error = r.mean_error;
+        if (quick || (s.spacing == 0.0025 && s.h_over_dp == 1.3 && s.alpha == 0.1)) result.error = r.mean_error;
     }
     return result;
 });
