@@ -6,4 +6,8 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 cd build
+# CTest runs tests side by side; one OpenMP thread each avoids oversubscribing
+# the cores (spin-waiting threads made the suite 2.5x slower). The
+# determinism tests set 1 and 2 threads themselves.
+export OMP_NUM_THREADS=1
 ctest --output-on-failure -j"$(nproc)" --timeout 900

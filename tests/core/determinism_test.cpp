@@ -27,6 +27,7 @@ json settling_scene(int dim) {
 std::uint64_t run_with_threads(int dim, int threads, long steps) {
 #ifdef _OPENMP
     omp_set_num_threads(threads);
+    REQUIRE(omp_get_max_threads() == threads);  // (the suite runs with OMP_NUM_THREADS=1)
 #endif
     Simulation sim(settling_scene(dim));
     sim.set_quiet(true);
@@ -58,6 +59,7 @@ TEST_CASE("a brittle plate breaking under impact gives bit-identical states and 
     auto run = [](int threads) {
 #ifdef _OPENMP
         omp_set_num_threads(threads);
+        REQUIRE(omp_get_max_threads() == threads);
 #endif
         json scene = {{"dimension", 2},
                       {"plugins", {"linear", "linear_pbond"}},
