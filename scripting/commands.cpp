@@ -129,9 +129,7 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
     }
     if (parts[0] == "wall" && parts.size() == 3 && (parts[1] == "force" || parts[1] == "moment")) {
         const std::string name = n.at("wall").string();
-        int wall = -1;
-        for (std::size_t i = 0; i < w.walls.walls.size(); ++i)
-            if (w.walls.walls[i].name == name) wall = int(i);
+        const int wall = w.walls.find(name);
         if (wall < 0) n.at("wall").fail("unknown wall \"" + name + "\"" + listed("walls", wall_names(w)));
         const bool force = parts[1] == "force";
         const int c = component(qn, parts[2]);
@@ -177,9 +175,7 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
     }
     if (n.has("wall")) {
         const std::string name = n.at("wall").string();
-        int wall = -1;
-        for (std::size_t i = 0; i < world_->walls.walls.size(); ++i)
-            if (world_->walls.walls[i].name == name) wall = int(i);
+        const int wall = world_->walls.find(name);
         if (wall < 0) n.at("wall").fail("unknown wall \"" + name + "\"" + listed("walls", wall_names(*world_)));
         for (const char* k : {"group", "id", "region", "fix", "free", "applied_force", "local_damping", "viscous_damping"})
             if (n.has(k)) n.at(k).fail(std::string("'") + k + "' does not apply to a wall (set velocity or angular_velocity)");

@@ -84,8 +84,7 @@ void generate_wall(const Node& n, World& w) {
     }
     Wall wall;
     wall.name = n.string_or("name", "wall" + std::to_string(w.walls.walls.size()));
-    for (const Wall& other : w.walls.walls)
-        if (other.name == wall.name) n.at("name").fail("a wall named \"" + wall.name + "\" already exists");
+    if (w.walls.find(wall.name) >= 0) n.at("name").fail("a wall named \"" + wall.name + "\" already exists");
     wall.group = w.group_index(n.string_or("group", "walls"));
     wall.velocity = n.vec_or("velocity", w.dim, Vec::Zero());
     if (n.has("angular_velocity")) {

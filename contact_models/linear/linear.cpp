@@ -12,8 +12,6 @@ namespace {
 
 using plab::Contact;
 
-constexpr double inf = std::numeric_limits<double>::infinity();
-
 struct Linear {
     static constexpr const char* name = "linear";
     static constexpr const char* doc =
@@ -26,18 +24,8 @@ struct Linear {
 
     enum Prop : int { kn, ks, fric, dp_nratio, dp_sratio, dp_mode, rgap, prop_count };
     static constexpr plab_property_desc properties[] = {
-        {"kn", "normal stiffness", "N/m", 1e6, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "linear normal spring (eq. 22)"},
-        {"ks", "shear stiffness", "N/m", 1e6, 0.0, inf, PLAB_MAX_EXCLUSIVE, "linear shear spring (eq. 24)"},
-        {"fric", "friction coefficient", "1", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE, "Coulomb limit (eq. 26)"},
-        {"dp_nratio", "normal critical damping ratio", "1", 0.0, 0.0, 1.0, PLAB_MAX_EXCLUSIVE,
-         "normal dashpot 2*beta_n*sqrt(m*kn) (eq. 27)"},
-        {"dp_sratio", "shear critical damping ratio", "1", 0.0, 0.0, 1.0, PLAB_MAX_EXCLUSIVE,
-         "shear dashpot 2*beta_s*sqrt(m*ks) (eq. 28)"},
-        {"dp_mode", "dashpot mode", "1", 0.0, 0.0, 3.0, PLAB_INTEGER,
-         "0 full; 1 shear dashpot off while sliding; 2 total normal force >= 0 (no tension); 3 = 1 and 2"},
-        {"rgap", "reference gap", "m", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "contact is active while surface gap <= rgap"},
+        plab::linear_law::kn,        plab::linear_law::ks,      plab::linear_law::fric, plab::linear_law::dp_nratio,
+        plab::linear_law::dp_sratio, plab::linear_law::dp_mode, plab::linear_law::rgap,
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 

@@ -5,8 +5,29 @@
 #include <plab/contact_model.hpp>
 
 #include <cmath>
+#include <limits>
 
 namespace plab::linear_law {
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Property descriptions of the linear law, for every model built on it.
+inline constexpr plab_property_desc kn = {"kn", "normal stiffness", "N/m", 1e6, 0.0, kInfinity,
+                                          PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "linear normal spring (eq. 22)"};
+inline constexpr plab_property_desc ks = {"ks", "shear stiffness", "N/m", 1e6, 0.0, kInfinity, PLAB_MAX_EXCLUSIVE,
+                                          "linear shear spring (eq. 24)"};
+inline constexpr plab_property_desc fric = {"fric", "friction coefficient", "1", 0.0, 0.0, kInfinity,
+                                            PLAB_MAX_EXCLUSIVE, "Coulomb limit (eq. 26)"};
+inline constexpr plab_property_desc dp_nratio = {"dp_nratio", "normal critical damping ratio", "1", 0.0, 0.0, 1.0,
+                                                 PLAB_MAX_EXCLUSIVE, "normal dashpot 2*beta_n*sqrt(m*kn) (eq. 27)"};
+inline constexpr plab_property_desc dp_sratio = {"dp_sratio", "shear critical damping ratio", "1", 0.0, 0.0, 1.0,
+                                                 PLAB_MAX_EXCLUSIVE, "shear dashpot 2*beta_s*sqrt(m*ks) (eq. 28)"};
+inline constexpr plab_property_desc dp_mode = {
+    "dp_mode", "dashpot mode", "1", 0.0, 0.0, 3.0, PLAB_INTEGER,
+    "0 full; 1 shear dashpot off while sliding; 2 total normal force >= 0 (no tension); 3 = 1 and 2"};
+inline constexpr plab_property_desc rgap = {"rgap", "reference gap", "m", 0.0, -kInfinity, kInfinity,
+                                            PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+                                            "the linear part is active while surface gap <= rgap"};
 
 struct Params {
     double kn, ks, fric, beta_n, beta_s;

@@ -30,14 +30,9 @@ struct LinearPBond {
 
     enum Prop : int { kn, ks, fric, dp_nratio, dp_sratio, dp_mode, rgap, pb_kn, pb_ks, pb_rmul, pb_mcf, pb_ten, pb_coh, prop_count };
     static constexpr plab_property_desc properties[] = {
-        {"kn", "normal stiffness", "N/m", 1e6, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "linear part (eq. 22)"},
-        {"ks", "shear stiffness", "N/m", 1e6, 0.0, inf, PLAB_MAX_EXCLUSIVE, "linear part (eq. 24)"},
-        {"fric", "friction coefficient", "1", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE, "linear part (eq. 26)"},
-        {"dp_nratio", "normal critical damping ratio", "1", 0.0, 0.0, 1.0, PLAB_MAX_EXCLUSIVE, "linear part (eq. 27)"},
-        {"dp_sratio", "shear critical damping ratio", "1", 0.0, 0.0, 1.0, PLAB_MAX_EXCLUSIVE, "linear part (eq. 28)"},
-        {"dp_mode", "dashpot mode", "1", 0.0, 0.0, 3.0, PLAB_INTEGER, "as in linear"},
-        {"rgap", "reference gap", "m", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "the linear part is active while surface gap <= rgap"},
+        // the linear part (eqs. 21–29)
+        plab::linear_law::kn,        plab::linear_law::ks,      plab::linear_law::fric, plab::linear_law::dp_nratio,
+        plab::linear_law::dp_sratio, plab::linear_law::dp_mode, plab::linear_law::rgap,
         {"pb_kn", "bond normal stiffness", "Pa/m", 1e12, 0.0, inf, PLAB_MAX_EXCLUSIVE, "k̄n, per bond area (eq. 47)"},
         {"pb_ks", "bond shear stiffness", "Pa/m", 1e12, 0.0, inf, PLAB_MAX_EXCLUSIVE, "k̄s, per bond area (eq. 48)"},
         {"pb_rmul", "bond radius multiplier", "1", 1.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,

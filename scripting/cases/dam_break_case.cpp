@@ -2,6 +2,8 @@
 // column of width a and height 2a released onto a dry bed. The surge front
 // x/a against T = t √(2g/a) is compared with Martin & Moyce (1952),
 // ../shared/reference/martin_moyce_1952_surge.csv (every series, T ≤ 3).
+#include "sph_cases.hpp"
+
 #include "../simulation.hpp"
 #include "../validation.hpp"
 
@@ -32,12 +34,6 @@ struct DamBreakResult {
     long fluid = 0, steps = 0;
     double cpu_seconds = 0;
 };
-
-json boundary_block(double x0, double y0, double x1, double y1, double db) {
-    return {{"type", "lattice"}, {"group", "boundary"}, {"packing", "square"},
-            {"box", {{"min", {x0, y0}}, {"max", {x1, y1}}}}, {"radius", db / 2}, {"spacing", db},
-            {"mass", rho0 * db * db}, {"fix", {"all"}}};
-}
 
 // The tank is 5a long; boundary balls at dp/2 deep enough to cover the kernel support 2h.
 json dam_break_scene(const DamBreakSpec& s) {

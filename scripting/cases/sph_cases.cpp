@@ -29,13 +29,13 @@ double sound_speed(const StaticTankSpec& s) {
     return s.speed_of_sound > 0 ? s.speed_of_sound : 10.0 * std::sqrt(2 * g * depth(s));
 }
 
-// A block of boundary balls (radius db/2 at spacing db, mass ρ0 db², all fixed).
-json boundary_block(double x0, double y0, double x1, double y1, double db) {
+} // namespace
+
+json boundary_block(double x0, double y0, double x1, double y1, double db, double rest_density) {
     return {{"type", "lattice"}, {"group", "boundary"}, {"packing", "square"},
             {"box", {{"min", {x0, y0}}, {"max", {x1, y1}}}}, {"radius", db / 2}, {"spacing", db},
-            {"mass", rho0 * db * db}, {"fix", {"all"}}};
+            {"mass", rest_density * db * db}, {"fix", {"all"}}};
 }
-} // namespace
 
 json static_tank_scene(const StaticTankSpec& s) {
     const double dp = s.spacing, db = dp / 2, W = s.columns * dp, H = depth(s), h = s.h_over_dp * dp;

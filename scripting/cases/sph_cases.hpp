@@ -7,6 +7,10 @@
 
 namespace plab::cases {
 
+// A block of fixed SPH boundary balls (thesis §2.2.4): radius db/2 at
+// spacing db, mass rho0 db², every degree of freedom fixed, group "boundary".
+nlohmann::json boundary_block(double x0, double y0, double x1, double y1, double db, double rho0 = 1000.0);
+
 // Thesis §5.1, Table 1: a 2D tank of fluid at rest under gravity, walls of
 // fixed boundary balls (thesis §2.2.4) at half the fluid spacing, density
 // initialised hydrostatically by the inverse EOS.

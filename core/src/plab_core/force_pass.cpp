@@ -196,6 +196,13 @@ void World::record_breaks(ModelInstance& inst, ContactSet& s) {
     }
 }
 
+// Adds contact row k's contributions to the fields its model accumulates,
+// for body i at end 1 or end 2.
+void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i) {
+    for (std::size_t a = 0; a < owner.fields_accumulated.size(); ++a)
+        fields_[owner.fields_accumulated[a]][i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
+}
+
 // Sum contact forces and moments onto bodies (plus gravity, applied loads and
 // local damping), each body walking its own contact rows in a fixed order.
 void World::reduce() {
@@ -224,9 +231,7 @@ void World::reduce() {
             kt += s.k_t[k];
             kr += s.k_r[k] + s.k_t[k] * arm.squaredNorm();
             const ModelInstance& owner = *set_owner_[en.set];
-            if (owner.desc->rates_stage) continue;  // summed after the rates stage
-            for (std::size_t a = 0; a < owner.fields_accumulated.size(); ++a)
-                fields_[owner.fields_accumulated[a]][i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
+            if (!owner.desc->rates_stage) accumulate(owner, s, k, is_end2, i);  // else summed after the rates stage
         }
         const double alpha = bodies.local_damping[i];
         if (alpha > 0) {  // PFC local damping: -alpha |F| sign(v), per component
@@ -306,9 +311,7 @@ void World::rates_stage() {
             const ContactSet& s = *sets_[en.set];
             const std::uint32_t k = en.row & ~end2_bit;
             if (!s.active[k]) continue;
-            const bool is_end2 = en.row & end2_bit;
-            for (std::size_t a = 0; a < owner.fields_accumulated.size(); ++a)
-                fields_[owner.fields_accumulated[a]][i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
+            accumulate(owner, s, k, en.row & end2_bit, i);
         }
     run_passes(PLAB_PHASE_RATES_DONE);
 }

@@ -65,6 +65,12 @@ int Walls::add_wall(Wall w) {
     return int(walls.size()) - 1;
 }
 
+int Walls::find(const std::string& name) const {
+    for (std::size_t i = 0; i < walls.size(); ++i)
+        if (walls[i].name == name) return int(i);
+    return -1;
+}
+
 void Walls::add_facet(int wall, Facet f) {
     f.wall = wall;
     f.id = next_facet_id++;

@@ -45,6 +45,7 @@ struct Walls {
     BodyId next_facet_id = 0;
 
     int add_wall(Wall w);
+    int find(const std::string& name) const;  // wall index, -1 when unknown
     void add_facet(int wall, Facet f);
     // Rigid motion over dt; returns the largest vertex displacement.
     double move(double dt, int dim);

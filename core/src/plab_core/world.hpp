@@ -226,6 +226,7 @@ private:
     void resolve_wall_features(ContactSet& set);
     void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
     void rates_stage();
+    void accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i);
     void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);
     void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
