@@ -32,6 +32,16 @@ namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
+// The equation of state's constants, declared by every pass that uses them;
+// a scene gives them the same values as the sph contact model.
+constexpr plab_property_desc rest_density_desc = {"rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf,
+                                                  PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in the sph contact model"};
+constexpr plab_property_desc speed_of_sound_desc = {"speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0,
+                                                    inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+                                                    "as in the sph contact model; B = rho0 c0^2/gamma"};
+constexpr plab_property_desc gamma_desc = {"gamma", "polytropic exponent", "1", 7.0, 0.0, inf,
+                                           PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "Tait exponent, 7 for water"};
+
 constexpr plab_property_desc boundary_group_desc = {
     "boundary_group", "group index of fixed boundary balls", "1", -1.0, -1.0, 1e9, PLAB_INTEGER,
     "their density stays rho0 (thesis 2.2.4); groups are numbered in the order the scene first names them; -1: none"};
@@ -46,11 +56,7 @@ struct SphEos {
     static constexpr uint32_t stage = 10;  // after sph_density_integration
     enum Prop : int { rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, prop_count };
     static constexpr plab_property_desc properties[] = {
-        {"rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"},
-        {"speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0, inf,
-         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in the sph contact model; B = rho0 c0^2/gamma"},
-        {"gamma", "polytropic exponent", "1", 7.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "7 for water"},
+        rest_density_desc, speed_of_sound_desc, gamma_desc,
         boundary_group_desc,
         {"hydrostatic_gravity", "gravity for the initial hydrostatic density", "m/s2", 0.0, 0.0, inf,
          PLAB_MAX_EXCLUSIVE, "g of the initial profile; 0: uniform rho0"},
@@ -113,11 +119,7 @@ struct SphWallPressure {
         {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
          "as in the sph contact model"},
         {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
-        {"rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in sph_eos"},
-        {"speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0, inf,
-         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in sph_eos"},
-        {"gamma", "polytropic exponent", "1", 7.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in sph_eos"},
+        rest_density_desc, speed_of_sound_desc, gamma_desc,
         boundary_group_desc,
         {"gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
         {"gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
