@@ -28,6 +28,10 @@ struct Cantilever {
     double break_x = 0, break_y = 0;  // where that bond is, m
     bool break_in_tension = false;
     double strength_load = 0;  // σ_ult h² / (6 L), N
+    // the load at which the equivalent beam's stress at the bottom row's
+    // centre, where the first bond sits, reaches σ_ult: a lattice calibrated
+    // for tension along its bonds breaks there
+    double row_strength_load = 0;
     double cpu_seconds = 0;
 };
 
@@ -36,7 +40,10 @@ struct Cantilever {
 // ν = 0.33, σ_ult = 310 MPa (thesis Table 4); rows chosen so the height is
 // closest to 6.196 mm.
 // clamp_rotation false: the clamped balls keep their spin free (a pinned row).
-Cantilever static_cantilever(double radius, double load, double ratio, bool clamp_rotation = true);
+// tension: the calibration's strength rule, "across_bonds" (thesis eq. 43) or
+// "along_bonds" (see scripting/calibration.cpp)
+Cantilever static_cantilever(double radius, double load, double ratio, const std::string& tension = "across_bonds",
+                             bool clamp_rotation = true);
 
 struct VelocityFailure {
     double reaction = 0;     // force on the driven ball when the first bond broke, N
@@ -47,7 +54,7 @@ struct VelocityFailure {
 };
 // The thesis failure test: the bottom-right ball driven upward at `velocity`
 // with local damping until the first bond breaks.
-VelocityFailure velocity_failure(double radius, double velocity);
+VelocityFailure velocity_failure(double radius, double velocity, const std::string& tension = "across_bonds");
 
 struct Impact {
     double input_energy = 0;      // kinetic energy of the projectile, J
