@@ -83,7 +83,9 @@ typedef struct plab_contact_batch {
     /* inputs, one entry per contact */
     const int32_t* end1;            /* body index of end 1 */
     const int32_t* end2;            /* body index, or facet index if wall */
-    const uint8_t* active;          /* 0: outside the activity range */
+    const uint8_t* active;          /* 0: outside the activity range; such a row
+                                     * has gap and distance set, its other
+                                     * inputs are unspecified (not computed) */
     const double* normal;           /* 3*count, unit */
     const double* gap;              /* surface gap, m (negative: overlap) */
     const double* distance;         /* centre(-to-surface) distance, m */

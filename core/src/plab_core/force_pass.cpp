@@ -22,6 +22,7 @@ inline void put(std::vector<double>& col, std::size_t k, const Vec& v) {
 void World::geometry(ModelInstance& inst, ContactSet& s) {
     const std::size_t n = s.size();
     const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
+    const int persist = inst.desc->persist_slot;
     const auto& B = bodies;
 #pragma omp parallel for schedule(static) if (n >= parallel_min)
     for (std::size_t k = 0; k < n; ++k) {
@@ -52,8 +53,19 @@ void World::geometry(ModelInstance& inst, ContactSet& s) {
             const std::int32_t j = s.end2[k];
             const Vec d = B.position[j] - xi;
             dist = d.norm();
-            normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
             rj = B.radius[j];
+            // most candidates of a Verlet list are not in contact: their gap
+            // and distance are all a model may read (the other columns of an
+            // inactive row are stale), so skip the rest
+            const double gap_only = dist - ri - rj;
+            const bool bonded = persist >= 0 && s.history[k * inst.stride + persist] > 0;
+            if (!bonded && (by_distance ? dist > inst.range : gap_only > inst.range)) {
+                s.gap[k] = gap_only;
+                s.distance[k] = dist;
+                s.active[k] = 0;
+                continue;
+            }
+            normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
             mj = B.mass[j];
             const double gap = dist - ri - rj;
             point = xi + normal * (ri + 0.5 * gap);  // middle of the overlap
@@ -110,24 +122,28 @@ void World::resolve_wall_features(ContactSet& s) {
     }
 }
 
+namespace {
+// The outputs a model adds to start from zero (dt limit: no limit).
+void clear_outputs(ContactSet& s, std::size_t o, std::size_t m) {
+    for (auto* v : {&s.force, &s.moment1, &s.moment2}) std::fill_n(v->begin() + 3 * o, 3 * m, 0.0);
+    for (auto* v : {&s.strain, &s.slip, &s.dashpot, &s.k_t, &s.k_r, &s.break_energy}) std::fill_n(v->begin() + o, m, 0.0);
+    std::fill_n(s.dt_limit.begin() + o, m, kInf);
+    for (auto& a : s.acc1) std::fill_n(a.begin() + o, m, 0.0);
+    for (auto& a : s.acc2) std::fill_n(a.begin() + o, m, 0.0);
+}
+} // namespace
+
 void World::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
     const std::size_t n = s.size();
     if (n == 0) return;
-    std::fill(s.force.begin(), s.force.end(), 0.0);
-    std::fill(s.moment1.begin(), s.moment1.end(), 0.0);
-    std::fill(s.moment2.begin(), s.moment2.end(), 0.0);
-    for (auto* v : {&s.strain, &s.slip, &s.dashpot, &s.k_t, &s.k_r, &s.break_energy}) std::fill(v->begin(), v->end(), 0.0);
-    std::fill(s.dt_limit.begin(), s.dt_limit.end(), kInf);
-    for (auto& a : s.acc1) std::fill(a.begin(), a.end(), 0.0);
-    for (auto& a : s.acc2) std::fill(a.begin(), a.end(), 0.0);
-
     std::vector<const double*> read_cols;
     for (int f : inst.fields_read) read_cols.push_back(fields_[f].data());
     const std::size_t n_batches = (n + kBatch - 1) / kBatch;
     int failed = 0;
 #pragma omp parallel for schedule(dynamic) reduction(| : failed) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
-        const std::size_t o = b * kBatch;
+        const std::size_t o = b * kBatch, m = std::min(kBatch, n - o);
+        clear_outputs(s, o, m);  // here rather than up front: the rows stay in cache for the model
         std::vector<double*> a1, a2;
         for (std::size_t f = 0; f < s.acc1.size(); ++f) {
             a1.push_back(s.acc1[f].data() + o);
@@ -135,7 +151,7 @@ void World::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
         }
         plab_contact_batch batch{};
         batch.dim = uint32_t(dim);
-        batch.count = uint32_t(std::min(kBatch, n - o));
+        batch.count = uint32_t(m);
         batch.end2_is_wall = s.with_wall;
         batch.history_stride = uint32_t(inst.stride);
         batch.dt = last_dt;
