@@ -219,13 +219,27 @@ void World::build_entries() {
     entries_.resize(entry_start_[n]);
     std::vector<std::uint32_t> fill(entry_start_.begin(), entry_start_.end() - 1);
     constexpr std::uint32_t end2_bit = 1u << 31;
+    slot1_.resize(sets_.size());
+    slot2_.resize(sets_.size());
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         const ContactSet* s = sets_[si];
+        slot1_[si].resize(s->size());
+        slot2_[si].resize(s->with_wall ? 0 : s->size());
         for (std::uint32_t k = 0; k < s->size(); ++k) {
+            slot1_[si][k] = fill[s->end1[k]];
             entries_[fill[s->end1[k]]++] = {si, k};
-            if (!s->with_wall) entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
+            if (s->with_wall) continue;
+            slot2_[si][k] = fill[s->end2[k]];
+            entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
         }
     }
+    const std::size_t slots = entries_.size();
+    slot_force_.resize(3 * slots);
+    slot_moment_.resize(3 * slots);
+    slot_kt_.resize(slots);
+    slot_kr_.resize(slots);
+    any_accumulation_ = false;
+    for (auto& inst : instances_) any_accumulation_ |= !inst->desc->rates_stage && !inst->fields_accumulated.empty();
 }
 
 } // namespace plab

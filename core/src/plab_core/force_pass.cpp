@@ -219,36 +219,78 @@ void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uin
         fields_[owner.fields_accumulated[a]][i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
 }
 
+// What each contact row adds to its two bodies, written to the bodies' CSR
+// slots: walking the rows in order keeps the contact data in cache, and the
+// body loop below then reads its slots contiguously. An inactive row adds
+// zeros, which leaves every sum bit-identical to skipping it.
+void World::scatter_to_slots(std::uint32_t si) {
+    const ContactSet& s = *sets_[si];
+    const std::size_t n = s.size();
+    const auto& B = bodies;
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::uint32_t e1 = slot1_[si][k];
+        if (!s.active[k]) {
+            std::fill_n(&slot_force_[3 * e1], 3, 0.0);
+            std::fill_n(&slot_moment_[3 * e1], 3, 0.0);
+            slot_kt_[e1] = slot_kr_[e1] = 0;
+            if (!s.with_wall) {
+                const std::uint32_t e2 = slot2_[si][k];
+                std::fill_n(&slot_force_[3 * e2], 3, 0.0);
+                std::fill_n(&slot_moment_[3 * e2], 3, 0.0);
+                slot_kt_[e2] = slot_kr_[e2] = 0;
+            }
+            continue;
+        }
+        const Vec f2(&s.force[3 * k]), point(&s.point[3 * k]);
+        const double kt = s.k_t[k], kr = s.k_r[k];
+        const Vec arm1 = point - B.position[s.end1[k]];
+        const Vec f1 = -f2;
+        const Vec m1 = arm1.cross(f1) + Vec(&s.moment1[3 * k]);
+        std::copy_n(f1.data(), 3, &slot_force_[3 * e1]);
+        std::copy_n(m1.data(), 3, &slot_moment_[3 * e1]);
+        slot_kt_[e1] = kt;
+        slot_kr_[e1] = kr + kt * arm1.squaredNorm();
+        if (s.with_wall) continue;
+        const std::uint32_t e2 = slot2_[si][k];
+        const Vec arm2 = point - B.position[s.end2[k]];
+        const Vec m2 = arm2.cross(f2) + Vec(&s.moment2[3 * k]);
+        std::copy_n(f2.data(), 3, &slot_force_[3 * e2]);
+        std::copy_n(m2.data(), 3, &slot_moment_[3 * e2]);
+        slot_kt_[e2] = kt;
+        slot_kr_[e2] = kr + kt * arm2.squaredNorm();
+    }
+}
+
 // Sum contact forces and moments onto bodies (plus gravity, applied loads and
-// local damping), each body walking its own contact rows in a fixed order.
+// local damping), each body adding its own slots in a fixed order.
 void World::reduce() {
     const std::size_t n = bodies.size();
     constexpr std::uint32_t end2_bit = 1u << 31;
     for (auto& inst : instances_)
         if (!inst->desc->rates_stage)
             for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_slots(si);
     double local_work = 0;
 #pragma omp parallel for schedule(static) reduction(+ : local_work) if (n >= parallel_min)
     for (std::size_t i = 0; i < n; ++i) {
         Vec f = bodies.mass[i] * gravity + bodies.applied_force[i];
         Vec m = bodies.applied_moment[i];
         double kt = 0, kr = 0;
-        const Vec& xi = bodies.position[i];
         for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-            const Entry en = entries_[e];
-            const ContactSet& s = *sets_[en.set];
-            const std::uint32_t k = en.row & ~end2_bit;
-            if (!s.active[k]) continue;
-            const bool is_end2 = en.row & end2_bit;
-            const Vec fc = is_end2 ? Vec(&s.force[3 * k]) : Vec(-Vec(&s.force[3 * k]));
-            const Vec arm = Vec(&s.point[3 * k]) - xi;
-            f += fc;
-            m += arm.cross(fc) + Vec(is_end2 ? &s.moment2[3 * k] : &s.moment1[3 * k]);
-            kt += s.k_t[k];
-            kr += s.k_r[k] + s.k_t[k] * arm.squaredNorm();
-            const ModelInstance& owner = *set_owner_[en.set];
-            if (!owner.desc->rates_stage) accumulate(owner, s, k, is_end2, i);  // else summed after the rates stage
+            f += Vec(&slot_force_[3 * e]);
+            m += Vec(&slot_moment_[3 * e]);
+            kt += slot_kt_[e];
+            kr += slot_kr_[e];
         }
+        if (any_accumulation_)  // fields of rates-stage models are summed after that stage
+            for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
+                const Entry en = entries_[e];
+                const ContactSet& s = *sets_[en.set];
+                const std::uint32_t k = en.row & ~end2_bit;
+                const ModelInstance& owner = *set_owner_[en.set];
+                if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
+            }
         const double alpha = bodies.local_damping[i];
         if (alpha > 0) {  // PFC local damping: -alpha |F| sign(v), per component
             for (int c = 0; c < 3; ++c) {

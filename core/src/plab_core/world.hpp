@@ -188,6 +188,12 @@ private:
     std::vector<Entry> entries_;
     std::vector<ContactSet*> sets_;
     std::vector<const ModelInstance*> set_owner_;
+    // CSR slot of each row's end 1 / end 2 in entries_ (per set), and what
+    // each slot adds to its body this cycle: force, moment, k_t, k_r
+    std::vector<std::vector<std::uint32_t>> slot1_, slot2_;
+    std::vector<double> slot_force_, slot_moment_, slot_kt_, slot_kr_;
+    bool any_accumulation_ = false;  // a force-stage model accumulates body fields
+    void scatter_to_slots(std::uint32_t set_index);
     std::vector<double> k_trans_, k_rot_;  // per-body stiffness sums of the last pass
     // active contacts for passes (built only when a pass is loaded)
     std::vector<std::int32_t> pc_end1_, pc_end2_;
