@@ -40,16 +40,14 @@ json dam_break_scene(const DamBreakSpec& s) {
     const double a = column_width, dp = s.spacing, db = dp / 2, h = s.h_over_dp * dp;
     const double t = std::ceil(2 * h / db) * db, length = 5 * a, wall_top = 2.5 * a;
     const double c0 = 10 * std::sqrt(2 * g * 2 * a);  // ten times the largest speed √(2 g H)
-    const json sph = {{"smoothing_length", h}, {"kernel", 0}, {"rest_density", rho0}, {"speed_of_sound", c0},
-                      {"viscosity", 1}, {"alpha", s.alpha}};
+    const json water = {{"groups", {"fluid", "boundary"}}, {"smoothing_length", h}, {"kernel", 0},
+                        {"rest_density", rho0}, {"speed_of_sound", c0}, {"gamma", 7.0}};
+    const json sph = {{"viscosity", 1}, {"alpha", s.alpha}};
     const json passes = {
         {{"name", "sph_density_integration"}, {"properties", {{"boundary_group", 1}}}},
-        {{"name", "sph_eos"},
-         {"properties", {{"rest_density", rho0}, {"speed_of_sound", c0}, {"gamma", 7.0}, {"boundary_group", 1},
-                         {"hydrostatic_gravity", g}, {"surface_level", 2 * a}}}},
-        {{"name", "sph_wall_pressure"},
-         {"properties", {{"smoothing_length", h}, {"kernel", 0}, {"rest_density", rho0}, {"speed_of_sound", c0},
-                         {"gamma", 7.0}, {"boundary_group", 1}, {"gravity_y", -g}}}}};
+        {{"name", "sph_eos"}, {"material", "water"},
+         {"properties", {{"boundary_group", 1}, {"hydrostatic_gravity", g}, {"surface_level", 2 * a}}}},
+        {{"name", "sph_wall_pressure"}, {"material", "water"}, {"properties", {{"boundary_group", 1}}}}};
     return {{"description", "2D dam break, column a x 2a (thesis 5.2, Martin & Moyce 1952)"},
             {"dimension", 2},
             {"gravity", {0, -g}},
@@ -60,6 +58,7 @@ json dam_break_scene(const DamBreakSpec& s) {
                {"mass", rho0 * dp * dp}, {"fix", {"rotation"}}},
               boundary_block(-t, -t, length + t, 0, db), boundary_block(-t, 0, 0, wall_top, db),
               boundary_block(length, 0, length + t, wall_top, db)}},
+            {"materials", {{"water", water}}},
             {"contact_models",
              {{{"groups", {"fluid", "fluid"}}, {"model", "sph"}, {"properties", sph}},
               {{"groups", {"fluid", "boundary"}}, {"model", "sph"}, {"properties", sph}}}},
