@@ -54,6 +54,9 @@ struct DamBreakSpec {
     double delta = 0.1;      // δ-SPH density diffusion (Islam eq. 6, his 0.1), fluid–fluid pairs
     bool no_slip = true;     // Adami no-slip walls (Islam §2.1); false: the wall balls' own (zero) velocity
     double end_T = 3.0;
+    int dim = 2;
+    double boundary_ratio = 0.5;  // boundary-ball spacing / dp (thesis: 1/2; Islam: 1)
+    double depth = 0.04;          // 3D: column thickness between the free-slip side walls, m
 };
 
 struct DamBreakResult {
@@ -65,5 +68,7 @@ struct DamBreakResult {
 
 nlohmann::json dam_break_scene(const DamBreakSpec& s);
 DamBreakResult dam_break(const DamBreakSpec& s);
+// The front Z = x/a at time T, interpolated in the recorded history.
+double front_at(const DamBreakResult& r, double T);
 
 } // namespace plab::cases
