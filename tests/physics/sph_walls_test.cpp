@@ -79,13 +79,13 @@ TEST_CASE("a no-slip wall set moving drags the fluid as in Stokes' first problem
     const double layers = 6 * dp / 2;  // covers the support 2h = 2.6 dp
     const json wall = cases::boundary_block(-0.05, -layers, L + 0.05, 0, dp / 2);
     const json sph = {{"viscosity", 0}, {"mu", mu}};
-    Simulation sim(fluid_scene(box(0, 0, L, H), dp, json::array({wall}), sph, 1.0, 1));
+    json scene = fluid_scene(box(0, 0, L, H), dp, json::array({wall}), sph, 1.0, 1);
+    scene["commands"] = {{{"set", {{"group", "boundary"}, {"velocity", {U, 0}}}}}};
+    Simulation sim(scene);
     sim.set_quiet(true);
+    sim.run();
     World& w = sim.world();
-    const int fluid = w.find_group("fluid"), boundary = w.find_group("boundary");
-    for (std::size_t i = 0; i < w.bodies.size(); ++i)
-        if (w.bodies.group[i] == boundary) w.bodies.velocity[i] = Vec(U, 0, 0);
-    w.mark_dirty();
+    const int fluid = w.find_group("fluid");
     while (w.time < t_end) w.step();
     // rows of the middle third, away from the free ends
     const int rows = int(H / dp);
@@ -120,18 +120,19 @@ TEST_CASE("a piston pushing into fluid at rest feels the water-hammer pressure a
                          cases::boundary_block(-t, H, L + 0.1, H + t, dp / 2),
                          cases::boundary_block(-t, 0, 0, H, dp / 2)};  // the piston
     const json sph = {{"viscosity", 1}, {"alpha", 0.1}};
-    Simulation sim(fluid_scene(box(0, 0, L, H), dp, blocks, sph, c0, 1));
+    json scene = fluid_scene(box(0, 0, L, H), dp, blocks, sph, c0, 1);
+    // the scene's `set` command gives the piston balls (fixed: they keep it) their velocity
+    scene["commands"] = {{{"set", {{"group", "boundary"}, {"region", box(-1, 1e-6, 0, H - 1e-6)}, {"velocity", {u, 0}}}}}};
+    Simulation sim(scene);
     sim.set_quiet(true);
+    sim.run();
     World& w = sim.world();
     const int fluid = w.find_group("fluid"), boundary = w.find_group("boundary");
-    Vec piston_velocity(u, 0, 0);
-    for (std::size_t i = 0; i < w.bodies.size(); ++i)
-        if (w.bodies.group[i] == boundary && w.bodies.position[i].x() < 0 && w.bodies.position[i].y() > 0 &&
-            w.bodies.position[i].y() < H)
-            w.bodies.velocity[i] = piston_velocity;
-    w.mark_dirty();
     w.prepare();
     const Vec p0 = group_sum(w, fluid, w.bodies.velocity, true);
+    std::size_t piston_ball = 0;
+    while (w.bodies.velocity[piston_ball].x() == 0) ++piston_ball;
+    const double piston_start = w.bodies.position[piston_ball].x();
     // the piston force on the fluid averaged over [0.005, 0.03] s (2L/c0 = 0.04 s)
     double force_time = 0, window = 0;
     Vec impulse = Vec::Zero();
@@ -146,6 +147,7 @@ TEST_CASE("a piston pushing into fluid at rest feels the water-hammer pressure a
     }
     const double joukowsky = 1000 * c0 * u * H;  // N per metre of thickness
     CHECK(force_time / window == Approx(joukowsky).epsilon(0.06));
+    CHECK(w.bodies.position[piston_ball].x() - piston_start == Approx(u * w.time).epsilon(1e-9));  // prescribed motion
     // momentum: the fluid gained exactly the wall impulse (no gravity), to round-off
     const Vec dp_fluid = group_sum(w, fluid, w.bodies.velocity, true) - p0;
     CHECK(impulse.x() > 0.5 * joukowsky * 0.025);  // the piston did push
