@@ -105,7 +105,7 @@ void Materials::check_all_used() const {
             if (v.key() == "groups" || std::find(m.used.begin(), m.used.end(), v.key()) != m.used.end()) continue;
             throw InputError(m.path + "." + v.key(),
                              "no contact model or pass using the material \"" + m.name + "\" has a property '" +
-                                 v.key() + "' (`plab plugins --describe NAME` lists them)");
+                                 v.key() + "' (plab plugins --describe NAME lists them)");
         }
 }
 
