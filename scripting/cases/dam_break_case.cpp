@@ -46,7 +46,7 @@ json dam_break_scene(const DamBreakSpec& s) {
     const double a = column_width, dp = s.spacing, db = s.boundary_ratio * dp, h = s.h_over_dp * dp;
     const double t = std::ceil(2 * h / db - 1e-9) * db, length = 5 * a, D = s.depth;
     const double wall_top = dim == 2 ? 2.5 * a : 2 * a + t;  // 3D: only as high as the column (fewer balls)
-    const double c0 = 10 * std::sqrt(2 * g * 2 * a);  // ten times the largest speed √(2 g H)
+    const double c0 = s.sound_speed_factor * std::sqrt(2 * g * 2 * a);  // ten times the largest speed √(2 g H)
     json water = {{"groups", {"fluid", "boundary"}}, {"smoothing_length", h}, {"kernel", 0},
                   {"rest_density", rho0}, {"speed_of_sound", c0}, {"gamma", 7.0}};
     const json viscosity = s.mu > 0 ? json{{"viscosity", 0}, {"mu", s.mu}} : json{{"viscosity", 1}, {"alpha", s.alpha}};

@@ -54,6 +54,7 @@ struct DamBreakSpec {
     double delta = 0.1;      // δ-SPH density diffusion (Islam eq. 6, his 0.1), fluid–fluid pairs
     bool no_slip = true;     // Adami no-slip walls (Islam §2.1); false: the wall balls' own (zero) velocity
     double end_T = 3.0;
+    double sound_speed_factor = 10;  // c0 = this x the largest speed sqrt(2 g 2a)
     int dim = 2;
     double boundary_ratio = 0.5;  // boundary-ball spacing / dp (thesis: 1/2; Islam: 1)
     double depth = 0.04;          // 3D: column thickness between the free-slip side walls, m
