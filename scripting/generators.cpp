@@ -230,6 +230,19 @@ std::optional<Box> generate_bodies(const Node& n, World& w) {
     return type == "lattice" ? lattice(n, w) : random_fill(n, w);
 }
 
+double read_property(const Node& v, const plab_property_desc& d) {
+    // dimensionless properties have the unit "1": leave it out of messages
+    const std::string unit = std::string(d.unit) == "1" ? "" : " " + std::string(d.unit);
+    if (!v.value().is_number()) v.fail("expected a number in " + range_text(d) + unit + ", got " + show(v.value()));
+    const double x = v.value().get<double>();
+    if (!in_range(d, x)) {
+        std::ostringstream s;
+        s << "value " << x << " of " << d.name << " is outside the valid range " << range_text(d) << unit;
+        v.fail(s.str());
+    }
+    return x;
+}
+
 std::vector<double> read_properties(const Node& owner, const plab_property_desc* props, uint32_t count,
                                     const std::string& what) {
     std::vector<double> values(count);
@@ -246,16 +259,7 @@ std::vector<double> read_properties(const Node& owner, const plab_property_desc*
             for (uint32_t q = 0; q < count; ++q) known += (known.empty() ? "" : ", ") + std::string(props[q].key);
             v.fail("unknown property '" + it.key() + "' of " + what + "; its properties: " + (known.empty() ? "none" : known));
         }
-        // dimensionless properties have the unit "1": leave it out of messages
-        const std::string unit = std::string(props[p].unit) == "1" ? "" : " " + std::string(props[p].unit);
-        if (!it->is_number()) v.fail("expected a number in " + range_text(props[p]) + unit + ", got " + show(*it));
-        const double x = it->get<double>();
-        if (!in_range(props[p], x)) {
-            std::ostringstream s;
-            s << "value " << x << " of " << props[p].name << " is outside the valid range " << range_text(props[p]) << unit;
-            v.fail(s.str());
-        }
-        values[p] = x;
+        values[p] = read_property(v, props[p]);
     }
     return values;
 }

@@ -47,6 +47,8 @@ void generate_wall(const Node& n, World& w);
 // declared range, defaults for the rest; an unknown key lists the known ones.
 std::vector<double> read_properties(const Node& owner, const plab_property_desc* props, uint32_t count,
                                     const std::string& what);
+// One property value checked against its declared range.
+double read_property(const Node& v, const plab_property_desc& d);
 
 // Degrees of freedom named in a "fix" list ("x", "y", "z", "rx", "ry", "rz",
 // "translation", "rotation", "all").

@@ -2,10 +2,12 @@
 // assignment table, passes and the timestep. Every check names its JSON path.
 #include "calibration.hpp"
 #include "generators.hpp"
+#include "materials.hpp"
 #include "simulation.hpp"
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -36,15 +38,16 @@ std::string plugin_names(const PluginHost& host) {
 } // namespace
 
 Simulation::Simulation(const json& scene, const std::string& scene_dir, std::shared_ptr<PluginHost> host)
-    : scene_(scene), scene_dir_(scene_dir), host_(host ? std::move(host) : std::make_shared<PluginHost>()) {
+    : scene_(scene), scene_dir_(scene_dir), host_(host ? std::move(host) : std::make_shared<PluginHost>()),
+      materials_(std::make_unique<Materials>()) {
     load(Node(scene_, "scene"));
 }
 
 Simulation::~Simulation() = default;
 
 void Simulation::load(const Node& root) {
-    root.allow_keys({"description", "dimension", "domain", "gravity", "plugins", "bodies", "walls", "contact_models",
-                     "passes", "timestep", "skin", "histories", "output", "commands", "validation"});
+    root.allow_keys({"description", "dimension", "domain", "gravity", "plugins", "bodies", "walls", "materials",
+                     "contact_models", "passes", "timestep", "skin", "histories", "output", "commands", "validation"});
     const int dim = int(root.at("dimension").integer(2, 3));
     world_ = std::make_unique<World>(dim, host_);
     if (root.has("domain")) {
@@ -62,8 +65,10 @@ void Simulation::load(const Node& root) {
     load_plugins(root.has("plugins") ? root.at("plugins") : Node(json::array(), "scene.plugins"));
     if (root.has("bodies")) load_bodies(root.at("bodies"));
     if (root.has("walls")) load_walls(root.at("walls"));
+    if (root.has("materials")) materials_->load(root.at("materials"), *world_);
     if (root.has("contact_models")) load_contact_models(root.at("contact_models"));
     if (root.has("passes")) load_passes(root.at("passes"));
+    materials_->check_all_used();
     load_timestep(root.has("timestep") ? root.at("timestep") : Node(json::object(), "scene.timestep"));
     if (root.has("histories")) load_histories(root.at("histories"));
     if (root.has("output")) load_output(root.at("output"));
@@ -166,6 +171,12 @@ void Simulation::load_contact_models(const Node& n) {
                                       (names.empty() ? std::string("none (list plug-ins under \"plugins\")") : join(names)) +
                                       ", or \"null\" for no contact");
             }
+            // the rule's materials: those of the groups it names (materials.hpp)
+            std::vector<int> mats;
+            for (const auto& side : sides)
+                for (int g : side)
+                    if (const int m = materials_->of_group(g); m >= 0 && std::find(mats.begin(), mats.end(), m) == mats.end())
+                        mats.push_back(m);
             if (rule.has("calibrate")) {
                 // calibrated values first; explicit properties override them
                 const Node cal = rule.at("calibrate");
@@ -175,9 +186,13 @@ void Simulation::load_contact_models(const Node& n) {
                 if (rule.has("properties")) props.update(rule.value()["properties"]);
                 merged["properties"] = props;
                 const Node merged_rule(merged, rule.path());
-                instance = w.add_instance(model, read_properties(merged_rule, d->properties, d->property_count, "model " + model));
+                std::vector<double> values = read_properties(merged_rule, d->properties, d->property_count, "model " + model);
+                materials_->fill(merged_rule, mats, d->properties, d->property_count, w.gravity, values);
+                instance = w.add_instance(model, std::move(values));
             } else {
-                instance = w.add_instance(model, read_properties(rule, d->properties, d->property_count, "model " + model));
+                std::vector<double> values = read_properties(rule, d->properties, d->property_count, "model " + model);
+                materials_->fill(rule, mats, d->properties, d->property_count, w.gravity, values);
+                instance = w.add_instance(model, std::move(values));
             }
         } else if (rule.has("properties")) {
             rule.at("properties").fail("the null model has no properties");
@@ -191,7 +206,7 @@ void Simulation::load_passes(const Node& n) {
     n.expect_array();
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node p = n.at(i);
-        p.allow_keys({"name", "properties"});
+        p.allow_keys({"name", "material", "properties"});
         const std::string name = p.at("name").string();
         const plab_pass_desc* d = host_->pass(name);
         if (!d) {
@@ -199,7 +214,11 @@ void Simulation::load_passes(const Node& n) {
             p.at("name").fail("unknown pass \"" + name + "\"; passes loaded by this scene's plugins: " +
                               (names.empty() ? std::string("none") : join(names)));
         }
-        world_->add_pass(name, read_properties(p, d->properties, d->property_count, "pass " + name));
+        std::vector<double> values = read_properties(p, d->properties, d->property_count, "pass " + name);
+        std::vector<int> mats;
+        if (p.has("material")) mats.push_back(materials_->find(p.at("material")));
+        materials_->fill(p, mats, d->properties, d->property_count, world_->gravity, values);
+        world_->add_pass(name, std::move(values));
     }
 }
 

@@ -15,6 +15,8 @@
 
 namespace plab {
 
+class Materials;
+
 // Applies "a.b.0.c=value" to a scene: the value is read as JSON when it
 // parses (numbers, arrays, true/false), else as a string. The path must
 // exist up to its last key (a typo is an error, not a new key).
@@ -74,6 +76,7 @@ private:
     bool quiet_ = false;
     std::shared_ptr<PluginHost> host_;
     std::unique_ptr<World> world_;
+    std::unique_ptr<Materials> materials_;  // scene.materials, used while loading
     std::vector<Command> commands_;
     std::vector<HistoryColumn> history_cols_;
     std::vector<std::vector<double>> history_rows_;

@@ -6,7 +6,11 @@
 //     contact force on end 2; the host applies its opposite to end 1, so
 //     linear momentum is conserved to round-off.
 // Viscosity: Morris laminar (thesis eq. 14) or Monaghan artificial
-// (Islam eqs. 8–9). Optional anti-clump term R_ij (thesis eq. 17).
+// (Islam eqs. 8–9). Optional anti-clump term R_ij (thesis eq. 17) and
+// δ-SPH density diffusion (Islam eq. 6). No-slip walls (Adami et al. 2012):
+// the viscous terms see a boundary ball moving at its extrapolated wall
+// velocity, its own velocity plus the field sph_wall_velocity_correction
+// that the sph_wall_pressure pass sets (zero for fluid balls).
 // The continuity sum is accumulated in the host's rates stage; the passes
 // `sph_density_integration`, `sph_eos` and `sph_wall_pressure` (phase
 // RATES_DONE) turn it into density and pressure before the force stage.
@@ -42,7 +46,7 @@ struct Sph {
 
     enum Prop : int {
         smoothing_length, kernel, rest_density, speed_of_sound, viscosity, mu, alpha, beta,
-        anticlump, anticlump_spacing, prop_count
+        anticlump, anticlump_spacing, density_diffusion, prop_count
     };
     static constexpr plab_property_desc properties[] = {
         {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
@@ -66,11 +70,18 @@ struct Sph {
          "R_ij of eq. 17; 0 switches it off, the thesis uses 0.01"},
         {"anticlump_spacing", "initial particle spacing for W(dp)", "m", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
          "dp in (W_ij / W(dp))^4 of eq. 17; 0: dp = h; a dp outside the kernel support switches R_ij off"},
+        {"density_diffusion", "delta-SPH coefficient delta", "1", 0.0, 0.0, 1.0, 0,
+         "density diffusion delta h c0 sum 2 m_j/rho_j (rho_i - rho_j) x_ij.grad W/(r^2 + 0.01h^2) (Islam eq. 6); "
+         "0 off, Islam uses 0.1; set it on the fluid-fluid rule"},
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 
-    enum Field : int { density, pressure };
-    static constexpr plab_field_desc fields_read[] = {{"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0}};
+    // density and pressure first: other plug-ins (SPH-DEM coupling) name them so
+    enum Field : int { density, pressure, wall_dvx, wall_dvy, wall_dvz };
+    static constexpr plab_field_desc fields_read[] = {
+        {"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0},
+        {"sph_wall_velocity_correction_x", "m/s", 0.0}, {"sph_wall_velocity_correction_y", "m/s", 0.0},
+        {"sph_wall_velocity_correction_z", "m/s", 0.0}};
     enum Acc : int { drho_dt };
     static constexpr plab_field_desc fields_accumulated[] = {{"sph_drho_dt", "kg/(m3 s)", 0.0}};
 
@@ -81,7 +92,8 @@ struct Sph {
     explicit Sph(const double* p)
         : kind_(KernelKind(int(p[kernel]))), h_(p[smoothing_length]), rho0_(p[rest_density]),
           c0_(p[speed_of_sound]), laminar_(int(p[viscosity]) == 0), mu_(p[mu]), alpha_(p[alpha]), beta_(p[beta]),
-          anticlump_(p[anticlump]), dp_(p[anticlump_spacing] > 0 ? p[anticlump_spacing] : p[smoothing_length]) {
+          anticlump_(p[anticlump]), dp_(p[anticlump_spacing] > 0 ? p[anticlump_spacing] : p[smoothing_length]),
+          delta_(p[density_diffusion]) {
         // W(dp) must be positive for eq. 17: a spacing outside the support switches the term off
         if (dp_ >= plab::sph::support_factor(kind_) * h_) anticlump_ = 0;
     }
@@ -104,9 +116,7 @@ struct Sph {
         const double v_n = plab::dot(v_rel, n);  // < 0 while approaching
 
         if (c.rates_stage()) {
-            // eq. 7: dρ_i/dt = Σ m_j v_ij·∇_i W_ij; both ends get m_other dW/dr (v_rel·n)
-            c.accumulate1(drho_dt, m2 * dW * v_n);
-            c.accumulate2(drho_dt, m1 * dW * v_n);
+            continuity(c, r, dW, v_n, m1, m2);
             return;
         }
         const double rho1 = density_or_rest(c.field1(density)), rho2 = density_or_rest(c.field2(density));
@@ -114,11 +124,13 @@ struct Sph {
         // eqs. 15–16: m_2 dv_2/dt = -m_1 m_2 (p1/ρ1² + p2/ρ2² + Π + R) ∇_2 W_21
         const double p_term = c.field1(pressure) / (rho1 * rho1) + c.field2(pressure) / (rho2 * rho2);
         double scalar = p_term + anticlump_term(W, r, p_term);
-        if (!laminar_) scalar += monaghan(r, v_n, rho1, rho2);
+        // the viscous terms see a no-slip wall ball at its extrapolated velocity (Adami 2012)
+        const Vec3 v_visc = v_rel + wall_correction(c, 2) - wall_correction(c, 1);
+        if (!laminar_) scalar += monaghan(r, plab::dot(v_visc, n), rho1, rho2);
         Vec3 f2 = (-m1 * m2 * scalar * dW) * n;
         if (laminar_ && mu_ > 0) {
             // eq. 14 (Morris): Σ m_j (μ_i+μ_j) x_ij·∇_i W_ij / (ρ_i ρ_j (r² + 0.01h²)) v_ij, x_ij·∇_i W_ij = r dW/dr
-            f2 += (m1 * m2 * 2 * mu_ * r * dW / (rho1 * rho2 * (r * r + 0.01 * h_ * h_))) * v_rel;
+            f2 += (m1 * m2 * 2 * mu_ * r * dW / (rho1 * rho2 * (r * r + 0.01 * h_ * h_))) * v_visc;
         }
         c.set_force(f2);
         c.set_stiffness(0);
@@ -132,6 +144,23 @@ private:
         if (laminar_ && mu_ > 0) dt = std::min(dt, 0.125 * h_ * h_ * rho0_ / mu_);
         return dt;
     }
+    // eq. 7: dρ_i/dt = Σ m_j v_ij·∇_i W_ij; both ends get m_other dW/dr (v_rel·n).
+    // Islam eq. 6 adds δ h c0 Σ 2 (m_j/ρ_j)(ρ_i - ρ_j) x_ij·∇_i W_ij/(r² + 0.01h²),
+    // x_ij·∇_i W_ij = r dW/dr for both ends: it diffuses density from the denser end.
+    void continuity(const Contact& c, double r, double dW, double v_n, double m1, double m2) const {
+        c.accumulate1(drho_dt, m2 * dW * v_n);
+        c.accumulate2(drho_dt, m1 * dW * v_n);
+        if (delta_ <= 0) return;
+        const double rho1 = density_or_rest(c.field1(density)), rho2 = density_or_rest(c.field2(density));
+        const double d = delta_ * h_ * c0_ * 2 * (rho1 - rho2) * r * dW / (r * r + 0.01 * h_ * h_);
+        c.accumulate1(drho_dt, d * m2 / rho2);
+        c.accumulate2(drho_dt, -d * m1 / rho1);
+    }
+    Vec3 wall_correction(const Contact& c, int end) const {
+        if (end == 1) return {c.field1(wall_dvx), c.field1(wall_dvy), c.field1(wall_dvz)};
+        return {c.field2(wall_dvx), c.field2(wall_dvy), c.field2(wall_dvz)};
+    }
+
     // The host's nominal-timestep probe passes zero fields: fall back to ρ0.
     double density_or_rest(double rho) const { return rho > 0 ? rho : rho0_; }
 
@@ -153,7 +182,7 @@ private:
     KernelKind kind_;
     double h_, rho0_, c0_;
     bool laminar_;
-    double mu_, alpha_, beta_, anticlump_, dp_;
+    double mu_, alpha_, beta_, anticlump_, dp_, delta_;
 };
 
 } // namespace

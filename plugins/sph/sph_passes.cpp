@@ -12,7 +12,9 @@
 //                            balls the hydrostatic profile by the inverse EOS
 //                            ρ = ρ0 (1 + ρ0 g (H - y)/B)^(1/γ) (thesis §5.2).
 //   sph_wall_pressure        boundary-ball pressure from the fluid (Islam
-//                            eqs. 10–11), optional.
+//                            eqs. 10–11), optional; with `no_slip` also the
+//                            wall velocity seen by the viscous terms (Adami
+//                            et al. 2012).
 // Fixed boundary balls (thesis §2.2.4) keep ρ = ρ0 (and p = 0 without
 // sph_wall_pressure): the passes skip the group whose index is
 // `boundary_group` (groups are numbered in the order the scene first names
@@ -104,9 +106,15 @@ private:
 // p = 0: each boundary ball w takes
 //   p_w = (Σ_f p_f W_wf + g·Σ_f ρ_f (x_w - x_f) W_wf) / Σ_f W_wf,
 //   ρ_w = ρ0 (p_w/B + 1)^(1/γ),
-// over its fluid neighbours f (static walls: a_w = 0). With p_w = 0 the
-// wall pushes with half the pressure the fluid needs and the first fluid
-// row is over-compressed (docs/sph.md).
+// over its fluid neighbours f (walls at rest or at constant velocity:
+// a_w = 0). With p_w = 0 the wall pushes with half the pressure the fluid
+// needs and the first fluid row is over-compressed (docs/sph.md).
+// No-slip (Adami et al. 2012, eq. 22): the viscous terms see the wall ball
+// at v_w = 2 v_prescribed - ṽ_w, ṽ_w = Σ_f v_f W_wf / Σ_f W_wf, so the
+// velocity interpolated to the wall surface is the wall's own. The pass
+// stores v_w - v_prescribed = v_prescribed - ṽ_w in the field
+// sph_wall_velocity_correction, which the sph model adds to the ball's
+// velocity in its viscous terms only.
 struct SphWallPressure {
     static constexpr const char* name = "sph_wall_pressure";
     static constexpr const char* doc =
@@ -114,7 +122,9 @@ struct SphWallPressure {
         "density by the inverse EOS. Runs after sph_eos.";
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 20;  // after sph_eos
-    enum Prop : int { smoothing_length, kernel, rest_density, speed_of_sound, gamma, boundary_group, gx, gy, gz, prop_count };
+    enum Prop : int {
+        smoothing_length, kernel, rest_density, speed_of_sound, gamma, boundary_group, gx, gy, gz, no_slip, prop_count
+    };
     static constexpr plab_property_desc properties[] = {
         {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
          "as in the sph contact model"},
@@ -124,20 +134,28 @@ struct SphWallPressure {
         {"gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
         {"gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
         {"gravity_z", "gravity, z", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
+        // default 1 (not 0): the contract suite moves zero defaults of whole numbers off whole numbers
+        {"no_slip", "no-slip walls", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
+         "1: viscous terms see the wall at 2 v_wall - (fluid velocity interpolated to the wall ball) (Adami 2012); "
+         "0: at the wall ball's own velocity"},
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
-    enum Field : int { density, pressure };
-    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0}};
+    enum Field : int { density, pressure, wall_dvx };
+    static constexpr plab_field_desc fields[] = {
+        {"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0},
+        {"sph_wall_velocity_correction_x", "m/s", 0.0}, {"sph_wall_velocity_correction_y", "m/s", 0.0},
+        {"sph_wall_velocity_correction_z", "m/s", 0.0}};
 
     explicit SphWallPressure(const double* p)
         : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), rho0_(p[rest_density]),
           gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
-          boundary_(int(p[boundary_group])), g_{p[gx], p[gy], p[gz]} {}
+          boundary_(int(p[boundary_group])), g_{p[gx], p[gy], p[gz]}, no_slip_(int(p[no_slip]) == 1) {}
 
     void run(const plab_pass_view& v) {
         const plab::sph::Kernel W{kind_, int(v.dim), h_};
         weighted_.assign(v.body_count, 0.0);
         weights_.assign(v.body_count, 0.0);
+        fluid_velocity_.assign(3 * std::size_t(v.body_count), 0.0);
         double* rho = v.fields[density];
         double* p = v.fields[pressure];
         for (uint32_t k = 0; k < v.contact_count; ++k) {
@@ -152,11 +170,16 @@ struct SphWallPressure {
             const double g_dot_d = g_[0] * d[0] + g_[1] * d[1] + g_[2] * d[2];
             weighted_[w] += (p[f] + rho[f] * g_dot_d) * kernel_value;
             weights_[w] += kernel_value;
+            for (int c = 0; c < 3; ++c) fluid_velocity_[3 * w + c] += v.velocity[3 * f + c] * kernel_value;
         }
         for (uint32_t i = 0; i < v.body_count; ++i) {
             if (v.group[i] != boundary_) continue;
-            p[i] = weights_[i] > 0 ? weighted_[i] / weights_[i] : 0.0;
+            const double sum = weights_[i];
+            p[i] = sum > 0 ? weighted_[i] / sum : 0.0;
             rho[i] = rho0_ * std::pow(std::max(p[i] / b_ + 1.0, 0.0), 1.0 / gamma_);
+            for (int c = 0; c < 3; ++c)  // v_w - v_prescribed = v_prescribed - ṽ_w (zero without fluid)
+                v.fields[wall_dvx + c][i] =
+                    no_slip_ && sum > 0 ? v.velocity[3 * i + c] - fluid_velocity_[3 * i + c] / sum : 0.0;
         }
     }
 
@@ -165,7 +188,8 @@ private:
     double h_, rho0_, gamma_, b_;
     int boundary_;
     double g_[3];
-    std::vector<double> weighted_, weights_;
+    bool no_slip_;
+    std::vector<double> weighted_, weights_, fluid_velocity_;
 };
 
 struct SphDensityIntegration {

@@ -41,17 +41,16 @@ json static_tank_scene(const StaticTankSpec& s) {
     const double dp = s.spacing, db = dp / 2, W = s.columns * dp, H = depth(s), h = s.h_over_dp * dp;
     const double t = s.boundary_layers * db, wall_top = H + 4 * dp;
     const double c0 = sound_speed(s);
-    const json sph = {{"smoothing_length", h}, {"kernel", s.kernel}, {"rest_density", rho0}, {"speed_of_sound", c0},
-                      {"viscosity", s.alpha > 0 ? 1 : 0}, {"mu", s.viscosity}, {"alpha", s.alpha}};
-    json passes = {{{"name", "sph_eos"},
-                    {"properties", {{"rest_density", rho0}, {"speed_of_sound", c0}, {"gamma", gamma_tait},
-                                    {"boundary_group", boundary_group}, {"hydrostatic_gravity", g}, {"surface_level", H}}}},
+    // ρ0, c0, γ, h and the kernel once, for the model and the passes (scene.materials)
+    const json water = {{"groups", {"fluid", "boundary"}}, {"smoothing_length", h}, {"kernel", s.kernel},
+                        {"rest_density", rho0}, {"speed_of_sound", c0}, {"gamma", gamma_tait}};
+    const json sph = {{"viscosity", s.alpha > 0 ? 1 : 0}, {"mu", s.viscosity}, {"alpha", s.alpha}};
+    json passes = {{{"name", "sph_eos"}, {"material", "water"},
+                    {"properties", {{"boundary_group", boundary_group}, {"hydrostatic_gravity", g}, {"surface_level", H}}}},
                    {{"name", "sph_density_integration"}, {"properties", {{"boundary_group", boundary_group}}}}};
     if (s.wall_pressure)
-        passes.push_back({{"name", "sph_wall_pressure"},
-                          {"properties", {{"smoothing_length", h}, {"kernel", s.kernel}, {"rest_density", rho0},
-                                          {"speed_of_sound", c0}, {"gamma", gamma_tait},
-                                          {"boundary_group", boundary_group}, {"gravity_y", -g}}}});
+        passes.push_back({{"name", "sph_wall_pressure"}, {"material", "water"},
+                          {"properties", {{"boundary_group", boundary_group}}}});
     return {{"description", "static tank, thesis 5.1 / Table 1"},
             {"dimension", 2},
             {"gravity", {0, -g}},
@@ -62,6 +61,7 @@ json static_tank_scene(const StaticTankSpec& s) {
                {"mass", rho0 * dp * dp}, {"fix", {"rotation"}}},  // eq. 83: m = ρ0 dp²
               boundary_block(-t, -t, W + t, 0, db), boundary_block(-t, 0, 0, wall_top, db),
               boundary_block(W, 0, W + t, wall_top, db)}},
+            {"materials", {{"water", water}}},
             {"contact_models",
              {{{"groups", {"fluid", "fluid"}}, {"model", "sph"}, {"properties", sph}},
               {{"groups", {"fluid", "boundary"}}, {"model", "sph"}, {"properties", sph}}}},

@@ -1,0 +1,96 @@
+// Scene materials (scripting/materials.hpp): SPH constants stated once per
+// group reach the contact model and the passes; contradictions, typos and a
+// group with two materials are errors naming the JSON paths.
+#include <simulation.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+
+using plab::json;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// One fluid ball resting dp above one boundary ball; the material states
+// rho0, c0, gamma, h and the kernel once.
+json two_ball_scene() {
+    return json::parse(R"({
+      "dimension": 2,
+      "gravity": [0, -9.81],
+      "plugins": ["sph", "sph_passes"],
+      "bodies": [
+        {"type": "ball", "group": "fluid", "position": [0, 0.01], "radius": 0.005, "mass": 0.1, "fix": ["all"]},
+        {"type": "ball", "group": "boundary", "position": [0, 0], "radius": 0.0025, "mass": 0.025, "fix": ["all"]}
+      ],
+      "materials": {"water": {"groups": ["fluid", "boundary"], "rest_density": 1000, "speed_of_sound": 15,
+                              "gamma": 7, "smoothing_length": 0.012, "kernel": 0}},
+      "contact_models": [{"groups": ["fluid", "boundary"], "model": "sph", "properties": {"viscosity": 1}}],
+      "passes": [
+        {"name": "sph_eos", "material": "water", "properties": {"boundary_group": 1}},
+        {"name": "sph_wall_pressure", "material": "water", "properties": {"boundary_group": 1}}
+      ]
+    })");
+}
+
+double model_property(const plab::World& w, const char* key) {
+    const auto& inst = *w.instances().at(0);
+    for (uint32_t p = 0; p < inst.desc->property_count; ++p)
+        if (std::strcmp(inst.desc->properties[p].key, key) == 0) return inst.props[p];
+    FAIL("no property " << key);
+    return 0;
+}
+
+} // namespace
+
+TEST_CASE("a material's constants reach the sph model and the passes that name it", "[scene][sph]") {
+    plab::Simulation sim(two_ball_scene());
+    sim.set_quiet(true);
+    plab::World& w = sim.world();
+    CHECK(model_property(w, "rest_density") == 1000);
+    CHECK(model_property(w, "speed_of_sound") == 15);
+    CHECK(model_property(w, "smoothing_length") == 0.012);
+    CHECK(model_property(w, "kernel") == 0);
+    CHECK(w.instances()[0]->range == Approx(2 * 0.012));  // Wendland support 2h from the material's h
+    w.prepare();
+    // Islam eq. 10 with one fluid neighbour at rest at rho0 (p = 0), 1 cm above:
+    // p_w = rho_f g·(x_w - x_f) = 1000 · 9.81 · 0.01, the scene gravity filled into gravity_y;
+    // eq. 11 (inverse Tait with the material's c0 and gamma): rho_w = rho0 (p_w/B + 1)^(1/gamma)
+    const auto& p = w.field(w.field_index("sph_pressure"));
+    const auto& rho = w.field(w.field_index("sph_density"));
+    const double p_w = 1000 * 9.81 * 0.01, B = 1000 * 15.0 * 15.0 / 7;
+    CHECK(p[1] == Approx(p_w).epsilon(1e-12));
+    CHECK(rho[1] == Approx(1000 * std::pow(p_w / B + 1, 1.0 / 7)).epsilon(1e-12));
+}
+
+TEST_CASE("an explicit value that contradicts the material names both JSON paths", "[scene][sph]") {
+    json scene = two_ball_scene();
+    scene["contact_models"][0]["properties"]["speed_of_sound"] = 20;
+    CHECK_THROWS_WITH(plab::Simulation(scene),
+                      Contains("scene.contact_models[0].properties.speed_of_sound") &&
+                          Contains("scene.materials.water.speed_of_sound") && Contains("contradicts"));
+    scene = two_ball_scene();
+    scene["passes"][0]["properties"]["speed_of_sound"] = 15;  // the same value again is allowed
+    CHECK_NOTHROW(plab::Simulation(scene));
+    scene["passes"][1]["properties"]["gravity_y"] = -9.7;
+    CHECK_THROWS_WITH(plab::Simulation(scene), Contains("scene.passes[1].properties.gravity_y") && Contains("scene.gravity"));
+}
+
+TEST_CASE("material errors: unused key, out of range, unknown material or group, two materials", "[scene][sph]") {
+    json scene = two_ball_scene();
+    scene["materials"]["water"]["rest_densty"] = 1000;
+    CHECK_THROWS_WITH(plab::Simulation(scene), Contains("scene.materials.water.rest_densty") && Contains("no contact model or pass"));
+    scene = two_ball_scene();
+    scene["materials"]["water"]["gamma"] = -1;  // checked against the pass's declared range
+    CHECK_THROWS_WITH(plab::Simulation(scene), Contains("scene.materials.water.gamma") && Contains("valid range"));
+    scene = two_ball_scene();
+    scene["passes"][0]["material"] = "oil";
+    CHECK_THROWS_WITH(plab::Simulation(scene), Contains("scene.passes[0].material") && Contains("water"));
+    scene = two_ball_scene();
+    scene["materials"]["water"]["groups"] = {"fluid", "sand"};
+    CHECK_THROWS_WITH(plab::Simulation(scene), Contains("scene.materials.water.groups[1]") && Contains("unknown group"));
+    scene = two_ball_scene();
+    scene["materials"]["oil"] = {{"groups", {"fluid"}}, {"rest_density", 900}};
+    CHECK_THROWS_WITH(plab::Simulation(scene), Contains(".groups[0]") && Contains("one material"));
+}
