@@ -2,6 +2,7 @@
 
 #include "error.hpp"
 
+#include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
 
 #include <cmath>
@@ -11,6 +12,9 @@
 
 #ifndef PLAB_PLUGIN_DIR
 #define PLAB_PLUGIN_DIR ""
+#endif
+#ifndef PLAB_PLUGIN_DIR_FROM_BIN
+#define PLAB_PLUGIN_DIR_FROM_BIN "../lib/plab/plugins"
 #endif
 
 namespace fs = std::filesystem;
@@ -36,6 +40,20 @@ std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
     std::string out;
     for (const auto& s : v) out += (out.empty() ? "" : sep) + s;
     return out;
+}
+
+// The built-in plug-ins: beside an installed plab (bin/../lib/plab/plugins),
+// else the build folder they were built into. Only one of the two, so an
+// installed plab never mixes in a build tree's libraries.
+std::string builtin_plugin_dir() {
+    boost::dll::fs::error_code ec;
+    const fs::path exe = boost::dll::program_location(ec).string();
+    if (!ec) {
+        std::error_code fec;
+        const fs::path installed = exe.parent_path() / PLAB_PLUGIN_DIR_FROM_BIN;
+        if (fs::is_directory(installed, fec)) return installed.lexically_normal().string();
+    }
+    return PLAB_PLUGIN_DIR;
 }
 
 } // namespace
@@ -98,7 +116,7 @@ std::vector<std::string> check_model_desc(const plab_contact_model_desc& d) {
 }
 
 PluginHost::PluginHost() {
-    if (*PLAB_PLUGIN_DIR) dirs_.push_back(PLAB_PLUGIN_DIR);
+    if (const std::string builtin = builtin_plugin_dir(); !builtin.empty()) dirs_.push_back(builtin);
     if (const char* env = std::getenv("PLAB_PLUGIN_PATH")) {
         std::stringstream ss(env);
         std::string d;

@@ -27,8 +27,9 @@ public:
     PluginHost(const PluginHost&) = delete;
     PluginHost& operator=(const PluginHost&) = delete;
 
-    // Search path: the build's plug-in folder, then PLAB_PLUGIN_PATH
-    // (colon-separated), then any folder added here (e.g. the scene's).
+    // Search path: PLAB_PLUGIN_PATH folders (colon-separated) first, then the
+    // built-in plug-ins (bin/../lib/plab/plugins beside an installed plab,
+    // else the build folder), then any folder added here (e.g. the scene's).
     void add_search_dir(const std::string& dir, bool front = false);
     const std::vector<std::string>& search_dirs() const { return dirs_; }
 
