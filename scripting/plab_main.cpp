@@ -1,4 +1,5 @@
 // The `plab` command line: run scenes, list plug-ins, run validation cases.
+#include "new_model.hpp"
 #include "simulation.hpp"
 #include "validation.hpp"
 
@@ -20,7 +21,8 @@ const char* usage =
     "usage:\n"
     "  plab run SCENE.json [--set PATH=VALUE]... [--out DIR] [--quiet]\n"
     "  plab plugins [--describe MODEL]\n"
-    "  plab validate CASE... | --list | --all [--quick]\n";
+    "  plab validate CASE... | --list | --all [--quick]\n"
+    "  plab new-model NAME [DIR]   (an out-of-tree contact-model project)\n";
 
 int cmd_run(const std::vector<std::string>& args) {
     std::string scene_path, out;
@@ -170,6 +172,7 @@ int main(int argc, char** argv) {
         if (cmd == "run") return cmd_run(args);
         if (cmd == "plugins") return cmd_plugins(args);
         if (cmd == "validate") return cmd_validate(args);
+        if (cmd == "new-model") return cmd_new_model(args);
         std::cerr << "unknown command '" << cmd << "'\n" << usage;
         return 2;
     } catch (const InputError& e) {
