@@ -88,7 +88,8 @@ TEST_CASE("a model returning NaN stops the run with a diagnostic naming the ball
     Simulation sim(scene);
     sim.set_quiet(true);
     CHECK_THROWS_WITH(sim.cycle(20000), Contains("non-finite state of ball id") && Contains("at step") &&
-                                           Contains("contact model returned NaN") &&
+                                           Contains("contact model 'nan_model' returned a non-finite force") &&
+                                           Contains("ball id 0 and ball id 1") && Contains("check its law") &&
                                            Contains("back at its last good state"));
 }
 

@@ -322,6 +322,25 @@ void World::drift(double dt) {
     energies.body += body_work;
 }
 
+// For a plug-in author: the model and contact whose output went non-finite.
+std::string World::non_finite_contact(std::size_t body) const {
+    for (const auto& inst : instances_)
+        for (const ContactSet* set : {&inst->balls, &inst->walls})
+            for (std::size_t k = 0; k < set->size(); ++k) {
+                if (!set->active[k] || (std::size_t(set->end1[k]) != body && (set->with_wall || std::size_t(set->end2[k]) != body)))
+                    continue;
+                const Vec f(&set->force[3 * k]), m1(&set->moment1[3 * k]), m2(&set->moment2[3 * k]);
+                if (f.allFinite() && m1.allFinite() && m2.allFinite()) continue;
+                std::ostringstream s;
+                s << "contact model '" << inst->model << "' returned a non-finite force or moment (a contact model returned NaN) for the contact of ball id "
+                  << bodies.id[set->end1[k]] << (set->with_wall ? " with a wall" : " and ball id " + std::to_string(bodies.id[set->end2[k]]))
+                  << " at gap " << set->gap[k] << " m: check its law for division by zero, sqrt or log of a negative "
+                  << "number, or use of history before it is set";
+                return s.str();
+            }
+    return "";
+}
+
 void World::check_finite() const {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         if (bodies.position[i].allFinite() && bodies.force[i].allFinite() && bodies.moment[i].allFinite() &&
@@ -329,8 +348,10 @@ void World::check_finite() const {
             continue;
         std::ostringstream s;
         s << "non-finite state of ball id " << bodies.id[i] << " at step " << step_count << " (t = " << time
-          << " s): position " << bodies.position[i].transpose() << ", force " << bodies.force[i].transpose()
-          << "; likely cause: timestep " << last_dt << " s above the stable limit, or a contact model returned NaN";
+          << " s): position " << bodies.position[i].transpose() << ", force " << bodies.force[i].transpose();
+        const std::string culprit = non_finite_contact(i);
+        if (!culprit.empty()) s << "; " << culprit;
+        else s << "; likely cause: timestep " << last_dt << " s above the stable limit, or a contact model returned NaN";
         throw RunError(s.str());
     }
 }

@@ -243,6 +243,7 @@ private:
     void kick(double half_dt);
     void drift(double dt);
     void check_finite() const;
+    std::string non_finite_contact(std::size_t body) const;
     void sum_energies(double dt);
 };
 
