@@ -159,9 +159,10 @@ void Simulation::load_histories(const Node& n) {
 }
 
 void Simulation::load_output(const Node& n) {
-    n.allow_keys({"dir", "vtk_interval"});
+    n.allow_keys({"dir", "vtk_interval", "png"});
     if (n.has("dir")) out_dir_ = n.at("dir").string();
     vtk_interval_ = n.number_or("vtk_interval", 0.0, 0.0, kInf, false, true);
+    if (n.has("png")) load_png_output(n.at("png"));
 }
 
 std::function<void(World&)> Simulation::load_set(const Node& n) {
@@ -357,6 +358,10 @@ void Simulation::after_step() {
         write_vtk_snapshot();
         next_vtk_time_ += vtk_interval_;
     }
+    if (png_interval_ > 0 && !out_dir_.empty() && w.time + 1e-12 >= next_png_time_) {
+        write_png_snapshot();
+        next_png_time_ += png_interval_;
+    }
 }
 
 void Simulation::cycle(long n) {
@@ -410,6 +415,11 @@ void Simulation::run() {
         w.prepare();
         write_vtk_snapshot();
         next_vtk_time_ = vtk_interval_;
+    }
+    if (png_interval_ > 0 && !out_dir_.empty() && w.step_count == 0) {
+        w.prepare();
+        write_png_snapshot();
+        next_png_time_ = png_interval_;
     }
     try {
         for (const Command& c : commands_) {

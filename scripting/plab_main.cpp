@@ -1,5 +1,6 @@
 // The `plab` command line: run scenes, list plug-ins, run validation cases.
 #include "new_model.hpp"
+#include "plot_command.hpp"
 #include "simulation.hpp"
 #include "validation.hpp"
 
@@ -22,7 +23,8 @@ const char* usage =
     "  plab run SCENE.json [--set PATH=VALUE]... [--out DIR] [--quiet]\n"
     "  plab plugins [--describe MODEL]\n"
     "  plab validate CASE... | --list | --all [--quick]\n"
-    "  plab new-model NAME [DIR]   (an out-of-tree contact-model project)\n";
+    "  plab new-model NAME [DIR]   (an out-of-tree contact-model project)\n"
+    "  plab plot HISTORY.csv [--x COL] [--y A,B] [--ref REF.csv --ref-y COL [--band F]] [--out FILE.png]\n";
 
 int cmd_run(const std::vector<std::string>& args) {
     std::string scene_path, out;
@@ -173,6 +175,7 @@ int main(int argc, char** argv) {
         if (cmd == "plugins") return cmd_plugins(args);
         if (cmd == "validate") return cmd_validate(args);
         if (cmd == "new-model") return cmd_new_model(args);
+        if (cmd == "plot") return cmd_plot(args);
         std::cerr << "unknown command '" << cmd << "'\n" << usage;
         return 2;
     } catch (const InputError& e) {

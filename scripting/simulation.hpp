@@ -3,6 +3,7 @@
 #pragma once
 
 #include "json_reader.hpp"
+#include "pictures.hpp"
 
 #include <plab_core/world.hpp>
 
@@ -84,6 +85,10 @@ private:
     double vtk_interval_ = 0, next_vtk_time_ = 0;
     int vtk_frames_ = 0;
     std::vector<std::pair<double, std::string>> vtk_series_;
+    double png_interval_ = 0, next_png_time_ = 0;  // output.png: 2D snapshots
+    int png_frames_ = 0;
+    SnapshotOptions png_;
+    void write_png_snapshot();
     RunSummary run_;
     std::string timestep_note_;
     std::chrono::steady_clock::time_point started_;
@@ -97,6 +102,7 @@ private:
     void load_timestep(const Node& n);
     void load_histories(const Node& n);
     void load_output(const Node& n);
+    void load_png_output(const Node& n);
     void load_commands(const Node& n);
     std::function<void(World&)> load_set(const Node& n);
     std::function<void(World&)> load_bond(const Node& n);

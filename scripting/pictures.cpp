@@ -1,0 +1,363 @@
+// PNG pictures with cairo (a Debian-packaged 2D drawing library): the scene
+// is drawn in world coordinates through one affine map, so balls keep their
+// true size; text and legend are drawn in pixels on top.
+#include "pictures.hpp"
+
+#include <plab_core/error.hpp>
+
+#include <cairo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <unordered_map>
+
+namespace plab {
+
+namespace {
+
+struct Rgb {
+    double r, g, b;
+};
+
+// Viridis (perceptually uniform, readable in grey), 9 control points.
+Rgb colour_map(double t) {
+    static const Rgb stops[] = {{0.267, 0.005, 0.329}, {0.278, 0.175, 0.483}, {0.231, 0.322, 0.546},
+                                {0.173, 0.449, 0.558}, {0.128, 0.567, 0.551}, {0.153, 0.680, 0.504},
+                                {0.361, 0.785, 0.388}, {0.668, 0.862, 0.196}, {0.993, 0.906, 0.144}};
+    t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 8.0;
+    const int i = std::min(int(t), 7);
+    const double f = t - i;
+    const Rgb& a = stops[i];
+    const Rgb& b = stops[i + 1];
+    return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b)};
+}
+
+// Distinct colours for groups and curves (Okabe–Ito, colour-blind safe).
+Rgb category(int k) {
+    static const Rgb c[] = {{0.000, 0.447, 0.698}, {0.835, 0.369, 0.000}, {0.000, 0.620, 0.451},
+                            {0.800, 0.475, 0.655}, {0.941, 0.894, 0.259}, {0.337, 0.706, 0.914},
+                            {0.902, 0.624, 0.000}, {0.3, 0.3, 0.3}};
+    return c[((k % 8) + 8) % 8];
+}
+
+std::string number(double v, const char* fmt = "%.4g") {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, fmt, v);
+    return buf;
+}
+
+// A "nice" step (1, 2 or 5 x 10^k) close to span/target.
+double nice_step(double span, int target) {
+    if (!(span > 0)) return 1.0;
+    const double raw = span / target, mag = std::pow(10.0, std::floor(std::log10(raw)));
+    const double f = raw / mag;
+    return (f < 1.5 ? 1 : f < 3.5 ? 2 : f < 7.5 ? 5 : 10) * mag;
+}
+
+std::string length_text(double m) {
+    if (m >= 1) return number(m, "%g") + " m";
+    if (m >= 0.01) return number(m * 100, "%g") + " cm";
+    if (m >= 0.001) return number(m * 1000, "%g") + " mm";
+    return number(m * 1e6, "%g") + " um";
+}
+
+void text(cairo_t* cr, double x, double y, const std::string& s, double size = 14, double align = 0.0) {
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, size);
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, s.c_str(), &e);
+    cairo_move_to(cr, x - align * e.x_advance, y);
+    cairo_show_text(cr, s.c_str());
+}
+
+void save(cairo_surface_t* surface, const std::string& path) {
+    const std::filesystem::path p(path);
+    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+    const std::string tmp = path + ".tmp";
+    const cairo_status_t st = cairo_surface_write_to_png(surface, tmp.c_str());
+    if (st != CAIRO_STATUS_SUCCESS) throw std::runtime_error("cannot write " + path + ": " + cairo_status_to_string(st));
+    std::filesystem::rename(tmp, path);
+}
+
+// Bounding box of the balls and finite wall facets (x–y).
+void scene_bounds(const World& w, double& x0, double& y0, double& x1, double& y1) {
+    x0 = y0 = kInf;
+    x1 = y1 = -kInf;
+    auto grow = [&](double x, double y, double r) {
+        x0 = std::min(x0, x - r); x1 = std::max(x1, x + r);
+        y0 = std::min(y0, y - r); y1 = std::max(y1, y + r);
+    };
+    for (std::size_t i = 0; i < w.bodies.size(); ++i)
+        grow(w.bodies.position[i].x(), w.bodies.position[i].y(), w.bodies.radius[i]);
+    for (const Facet& f : w.walls.facets)
+        if (f.kind == FacetKind::segment) { grow(f.a.x(), f.a.y(), 0); grow(f.b.x(), f.b.y(), 0); }
+    if (!(x1 > x0)) { x0 = -1; x1 = 1; }
+    if (!(y1 > y0)) { y0 = -1; y1 = 1; }
+    const double pad = 0.03 * std::max(x1 - x0, y1 - y0);
+    x0 -= pad; x1 += pad; y0 -= pad; y1 += pad;
+}
+
+} // namespace
+
+std::vector<std::string> snapshot_field_names(const World& w) {
+    std::vector<std::string> names = {"velocity", "force", "group", "id", "stress_xx", "stress_yy", "stress_xy",
+                                      "mean_stress", "broken_bonds"};
+    for (const auto& f : w.field_names()) names.push_back(f);
+    return names;
+}
+
+std::vector<double> snapshot_values(const World& w, const std::string& field, std::string& unit) {
+    const Bodies& b = w.bodies;
+    std::vector<double> v(b.size(), 0.0);
+    if (field == "velocity" || field == "force") {
+        unit = field == "velocity" ? "m/s" : "N";
+        for (std::size_t i = 0; i < b.size(); ++i) v[i] = (field == "velocity" ? b.velocity[i] : b.force[i]).norm();
+    } else if (field == "group" || field == "id") {
+        unit = "";
+        for (std::size_t i = 0; i < b.size(); ++i) v[i] = field == "group" ? b.group[i] : double(b.id[i]);
+    } else if (field.rfind("stress_", 0) == 0 || field == "mean_stress") {
+        unit = "Pa";  // per-ball average stress, tension positive
+        const auto sigma = w.ball_stress();
+        for (std::size_t i = 0; i < b.size(); ++i)
+            v[i] = field == "stress_xx" ? sigma[i](0, 0) : field == "stress_yy" ? sigma[i](1, 1)
+                 : field == "stress_xy" ? sigma[i](0, 1) : 0.5 * (sigma[i](0, 0) + sigma[i](1, 1));
+        if (field != "stress_xx" && field != "stress_yy" && field != "stress_xy" && field != "mean_stress")
+            throw InputError("field", "unknown stress component '" + field + "'; use stress_xx, stress_yy, stress_xy, mean_stress");
+    } else if (field == "broken_bonds") {
+        unit = "";  // damage: bonds each ball has lost
+        std::unordered_map<BodyId, std::size_t> index;
+        for (std::size_t i = 0; i < b.size(); ++i) index[b.id[i]] = i;
+        for (const BondBreak& br : w.bond_breaks)
+            for (BodyId id : {br.id1, br.id2})
+                if (index.count(id)) v[index[id]] += 1;
+    } else {
+        const int f = w.field_index(field);
+        if (f < 0) {
+            std::string known;
+            for (const auto& n : snapshot_field_names(w)) known += (known.empty() ? "" : ", ") + n;
+            throw InputError("field", "unknown field '" + field + "' to colour balls by; fields: " + known);
+        }
+        unit = "";
+        v = const_cast<World&>(w).field(f);
+    }
+    return v;
+}
+
+void write_snapshot_png(const World& w, const SnapshotOptions& opt, const std::string& path) {
+    std::string unit;
+    const std::vector<double> value = snapshot_values(w, opt.field, unit);
+    const bool categorical = opt.field == "group";
+    double vmin = kInf, vmax = -kInf;
+    for (double v : value)
+        if (std::isfinite(v)) { vmin = std::min(vmin, v); vmax = std::max(vmax, v); }
+    if (!(vmax > vmin)) { vmin = std::isfinite(vmin) ? vmin : 0.0; vmax = vmin + 1.0; }
+
+    double x0, y0, x1, y1;
+    scene_bounds(w, x0, y0, x1, y1);
+    const int bar_w = 110, footer = 46, W = std::max(300, opt.width);
+    const double scale = double(W - bar_w) / (x1 - x0);  // px per metre
+    const int H = int(std::ceil((y1 - y0) * scale)) + footer;
+    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, std::max(H, 200));
+    cairo_t* cr = cairo_create(surface);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    auto px = [&](double x) { return (x - x0) * scale; };
+    auto py = [&](double y) { return (y1 - y) * scale; };
+
+    // walls
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    cairo_set_line_width(cr, 2.0);
+    for (const Facet& f : w.walls.facets)
+        if (f.kind == FacetKind::segment) {
+            cairo_move_to(cr, px(f.a.x()), py(f.a.y()));
+            cairo_line_to(cr, px(f.b.x()), py(f.b.y()));
+            cairo_stroke(cr);
+        }
+    // balls, to scale
+    const Bodies& b = w.bodies;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+        const Rgb c = categorical ? category(int(value[i])) : colour_map((value[i] - vmin) / (vmax - vmin));
+        cairo_arc(cr, px(b.position[i].x()), py(b.position[i].y()), std::max(0.5, b.radius[i] * scale), 0, 2 * M_PI);
+        cairo_set_source_rgb(cr, c.r, c.g, c.b);
+        cairo_fill(cr);
+    }
+    // bonds: intact as thin grey lines between centres, broken as red ones
+    if (opt.bonds) {
+        cairo_set_line_width(cr, std::max(0.6, 0.15 * scale * (b.size() ? b.radius[0] : 0.0)));
+        cairo_set_source_rgba(cr, 0.2, 0.2, 0.2, 0.6);
+        for (const auto& inst : w.instances()) {
+            const int slot = inst->desc->persist_slot;
+            if (slot < 0) continue;
+            const ContactSet& s = inst->balls;
+            for (std::size_t k = 0; k < s.size(); ++k)
+                if (s.history[k * inst->stride + slot] > 0) {
+                    cairo_move_to(cr, px(b.position[s.end1[k]].x()), py(b.position[s.end1[k]].y()));
+                    cairo_line_to(cr, px(b.position[s.end2[k]].x()), py(b.position[s.end2[k]].y()));
+                }
+            cairo_stroke(cr);
+        }
+        std::unordered_map<BodyId, std::size_t> index;
+        for (std::size_t i = 0; i < b.size(); ++i) index[b.id[i]] = i;
+        cairo_set_source_rgb(cr, 0.85, 0.0, 0.0);
+        cairo_set_line_width(cr, 2.5);
+        for (const BondBreak& br : w.bond_breaks) {
+            if (!index.count(br.id1) || !index.count(br.id2)) continue;
+            const Vec& p = b.position[index[br.id1]];
+            const Vec& q = b.position[index[br.id2]];
+            cairo_move_to(cr, px(p.x()), py(p.y()));
+            cairo_line_to(cr, px(q.x()), py(q.y()));
+            cairo_stroke(cr);
+            const double cx = px(0.5 * (p.x() + q.x())), cy = py(0.5 * (p.y() + q.y())), s = 4;  // a cross at the break
+            cairo_move_to(cr, cx - s, cy - s); cairo_line_to(cr, cx + s, cy + s);
+            cairo_move_to(cr, cx - s, cy + s); cairo_line_to(cr, cx + s, cy - s);
+            cairo_stroke(cr);
+        }
+    }
+    // colour bar (or group legend) on the right
+    const double bx = W - bar_w + 20, by = 30, bh = std::max(100.0, std::min(300.0, H - footer - 60.0));
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_rectangle(cr, W - bar_w, 0, bar_w, H);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    text(cr, bx, by - 10, opt.field + (unit.empty() ? "" : " [" + unit + "]"), 12);
+    if (categorical) {
+        for (std::size_t g = 0; g < w.group_names().size(); ++g) {
+            const Rgb c = category(int(g));
+            cairo_set_source_rgb(cr, c.r, c.g, c.b);
+            cairo_rectangle(cr, bx, by + 20.0 * g, 14, 14);
+            cairo_fill(cr);
+            cairo_set_source_rgb(cr, 0, 0, 0);
+            text(cr, bx + 20, by + 20.0 * g + 12, w.group_names()[g], 12);
+        }
+    } else {
+        for (int k = 0; k < int(bh); ++k) {
+            const Rgb c = colour_map(1.0 - k / bh);
+            cairo_set_source_rgb(cr, c.r, c.g, c.b);
+            cairo_rectangle(cr, bx, by + k, 18, 1.2);
+            cairo_fill(cr);
+        }
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        for (int k = 0; k <= 4; ++k)
+            text(cr, bx + 24, by + bh * (1 - k / 4.0) + 4, number(vmin + (vmax - vmin) * k / 4.0), 11);
+    }
+    // footer: time stamp and scale bar
+    const double fy = H - 16;
+    text(cr, 10, fy, "t = " + number(w.time, "%.5g") + " s   step " + std::to_string(w.step_count) + "   " +
+                         std::to_string(b.size()) + " balls", 14);
+    const double bar_m = nice_step((x1 - x0), 5);
+    const double sx1 = W - bar_w - 20, sx0 = sx1 - bar_m * scale;
+    cairo_set_line_width(cr, 3);
+    cairo_move_to(cr, sx0, fy - 4);
+    cairo_line_to(cr, sx1, fy - 4);
+    cairo_stroke(cr);
+    text(cr, 0.5 * (sx0 + sx1), fy - 10, length_text(bar_m), 12, 0.5);
+
+    cairo_destroy(cr);
+    save(surface, path);
+    cairo_surface_destroy(surface);
+}
+
+void write_plot_png(const Plot& plot, const std::string& path, int W, int H) {
+    double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf;
+    for (const Curve& c : plot.curves)
+        for (std::size_t k = 0; k < c.x.size() && k < c.y.size(); ++k) {
+            if (!std::isfinite(c.x[k]) || !std::isfinite(c.y[k])) continue;
+            x0 = std::min(x0, c.x[k]); x1 = std::max(x1, c.x[k]);
+            y0 = std::min(y0, c.y[k] * (1 - c.band)); y1 = std::max(y1, c.y[k] * (1 + c.band));
+            y0 = std::min(y0, c.y[k] * (1 + c.band)); y1 = std::max(y1, c.y[k] * (1 - c.band));
+        }
+    if (!(x1 > x0)) { x0 = std::isfinite(x0) ? x0 - 1 : 0; x1 = x0 + 2; }
+    if (!(y1 > y0)) { y0 = std::isfinite(y0) ? y0 - 1 : 0; y1 = y0 + 2; }
+    const double xs = nice_step(x1 - x0, 6), ys = nice_step(y1 - y0, 6);
+    x0 = std::floor(x0 / xs) * xs; x1 = std::ceil(x1 / xs) * xs;
+    y0 = std::floor(y0 / ys) * ys; y1 = std::ceil(y1 / ys) * ys;
+    const double L = 80, R = 40, T = 40, B = 55;
+    auto px = [&](double x) { return L + (x - x0) / (x1 - x0) * (W - L - R); };
+    auto py = [&](double y) { return H - B - (y - y0) / (y1 - y0) * (H - T - B); };
+
+    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
+    cairo_t* cr = cairo_create(surface);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    // grid and tick labels
+    cairo_set_line_width(cr, 1);
+    for (double x = x0; x <= x1 + 0.5 * xs; x += xs) {
+        cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
+        cairo_move_to(cr, px(x), py(y0)); cairo_line_to(cr, px(x), py(y1)); cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        text(cr, px(x), H - B + 18, number(std::fabs(x) < 1e-12 * xs ? 0.0 : x), 12, 0.5);
+    }
+    for (double y = y0; y <= y1 + 0.5 * ys; y += ys) {
+        cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
+        cairo_move_to(cr, px(x0), py(y)); cairo_line_to(cr, px(x1), py(y)); cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        text(cr, L - 6, py(y) + 4, number(std::fabs(y) < 1e-12 * ys ? 0.0 : y), 12, 1.0);
+    }
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_rectangle(cr, L, T, W - L - R, H - T - B);
+    cairo_stroke(cr);
+    text(cr, W / 2.0, 24, plot.title, 15, 0.5);
+    text(cr, (L + W - R) / 2.0, H - 12, plot.x_label, 13, 0.5);
+    cairo_save(cr);
+    cairo_translate(cr, 18, (T + H - B) / 2.0);
+    cairo_rotate(cr, -M_PI / 2);
+    text(cr, 0, 0, plot.y_label, 13, 0.5);
+    cairo_restore(cr);
+
+    // curves: error bands first, then lines, then reference markers
+    cairo_rectangle(cr, L, T, W - L - R, H - T - B);
+    cairo_clip(cr);
+    for (std::size_t c = 0; c < plot.curves.size(); ++c) {
+        const Curve& cv = plot.curves[c];
+        if (cv.band <= 0 || cv.x.size() < 2) continue;
+        const Rgb col = category(int(c));
+        cairo_set_source_rgba(cr, col.r, col.g, col.b, 0.18);
+        for (std::size_t k = 0; k < cv.x.size(); ++k) cairo_line_to(cr, px(cv.x[k]), py(cv.y[k] * (1 + cv.band)));
+        for (std::size_t k = cv.x.size(); k-- > 0;) cairo_line_to(cr, px(cv.x[k]), py(cv.y[k] * (1 - cv.band)));
+        cairo_close_path(cr);
+        cairo_fill(cr);
+    }
+    for (std::size_t c = 0; c < plot.curves.size(); ++c) {
+        const Curve& cv = plot.curves[c];
+        const Rgb col = category(int(c));
+        cairo_set_source_rgb(cr, col.r, col.g, col.b);
+        if (cv.reference) {
+            for (std::size_t k = 0; k < cv.x.size(); ++k) {
+                cairo_arc(cr, px(cv.x[k]), py(cv.y[k]), 3.5, 0, 2 * M_PI);
+                cairo_fill(cr);
+            }
+        } else {
+            cairo_set_line_width(cr, 2);
+            bool pen = false;
+            for (std::size_t k = 0; k < cv.x.size() && k < cv.y.size(); ++k) {
+                if (!std::isfinite(cv.y[k])) { pen = false; continue; }
+                if (pen) cairo_line_to(cr, px(cv.x[k]), py(cv.y[k]));
+                else cairo_move_to(cr, px(cv.x[k]), py(cv.y[k]));
+                pen = true;
+            }
+            cairo_stroke(cr);
+        }
+    }
+    cairo_reset_clip(cr);
+    // legend, top left inside the axes
+    for (std::size_t c = 0; c < plot.curves.size(); ++c) {
+        const Curve& cv = plot.curves[c];
+        const Rgb col = category(int(c));
+        const double lx = L + 12, ly = T + 18 + 18.0 * c;
+        cairo_set_source_rgb(cr, col.r, col.g, col.b);
+        if (cv.reference) { cairo_arc(cr, lx + 10, ly - 4, 3.5, 0, 2 * M_PI); cairo_fill(cr); }
+        else { cairo_set_line_width(cr, 2); cairo_move_to(cr, lx, ly - 4); cairo_line_to(cr, lx + 20, ly - 4); cairo_stroke(cr); }
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        std::string label = cv.label;
+        if (cv.band > 0) label += " (band +-" + number(100 * cv.band, "%g") + " %)";
+        text(cr, lx + 28, ly, label, 12);
+    }
+    cairo_destroy(cr);
+    save(surface, path);
+    cairo_surface_destroy(surface);
+}
+
+} // namespace plab

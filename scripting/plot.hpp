@@ -1,0 +1,23 @@
+// Time-series plots as PNG (cairo): curves against reference data with an
+// error band. Kept free of the kernel so validation cases can hand back
+// their series (CaseResult::plots) without more includes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace plab {
+
+struct Curve {
+    std::string label;
+    std::vector<double> x, y;
+    bool reference = false;   // drawn as markers (measured / published data)
+    double band = 0;          // > 0: shade y (1 +- band), the tolerance around a reference
+};
+struct Plot {
+    std::string title, x_label, y_label;
+    std::vector<Curve> curves;
+};
+void write_plot_png(const Plot& plot, const std::string& path, int width = 900, int height = 560);
+
+} // namespace plab
