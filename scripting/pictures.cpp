@@ -324,7 +324,7 @@ void write_plot_png(const Plot& plot, const std::string& path, int W, int H) {
         const Curve& cv = plot.curves[c];
         const Rgb col = category(int(c));
         cairo_set_source_rgb(cr, col.r, col.g, col.b);
-        if (cv.reference) {
+        if (cv.markers) {
             for (std::size_t k = 0; k < cv.x.size(); ++k) {
                 cairo_arc(cr, px(cv.x[k]), py(cv.y[k]), 3.5, 0, 2 * M_PI);
                 cairo_fill(cr);
@@ -348,7 +348,7 @@ void write_plot_png(const Plot& plot, const std::string& path, int W, int H) {
         const Rgb col = category(int(c));
         const double lx = L + 12, ly = T + 18 + 18.0 * c;
         cairo_set_source_rgb(cr, col.r, col.g, col.b);
-        if (cv.reference) { cairo_arc(cr, lx + 10, ly - 4, 3.5, 0, 2 * M_PI); cairo_fill(cr); }
+        if (cv.markers) { cairo_arc(cr, lx + 10, ly - 4, 3.5, 0, 2 * M_PI); cairo_fill(cr); }
         else { cairo_set_line_width(cr, 2); cairo_move_to(cr, lx, ly - 4); cairo_line_to(cr, lx + 20, ly - 4); cairo_stroke(cr); }
         cairo_set_source_rgb(cr, 0, 0, 0);
         std::string label = cv.label;

@@ -22,7 +22,7 @@ const char* usage =
     "usage:\n"
     "  plab run SCENE.json [--set PATH=VALUE]... [--out DIR] [--quiet]\n"
     "  plab plugins [--describe MODEL]\n"
-    "  plab validate CASE... | --list | --all [--quick]\n"
+    "  plab validate CASE... | --list | --all [--quick] [--report DIR]\n"
     "  plab new-model NAME [DIR]   (an out-of-tree contact-model project)\n"
     "  plab plot HISTORY.csv [--x COL] [--y A,B] [--ref REF.csv --ref-y COL [--band F]] [--out FILE.png]\n";
 
@@ -119,9 +119,13 @@ int cmd_plugins(const std::vector<std::string>& args) {
 
 int cmd_validate(const std::vector<std::string>& args) {
     bool quick = false, all = false;
+    std::string report;
     std::vector<std::string> names;
-    for (const auto& a : args) {
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
         if (a == "--quick") quick = true;
+        else if (a == "--report" && i + 1 < args.size()) report = args[++i];
+        else if (a == "--report") throw InputError("command line", "--report needs a folder, e.g. --report validation_report");
         else if (a == "--all") all = true;
         else if (a == "--list") {
             for (const auto& c : validation_cases()) std::cout << c.name << "  " << c.description << "\n";
@@ -139,6 +143,7 @@ int cmd_validate(const std::vector<std::string>& args) {
             throw InputError("command line", "unknown validation case '" + n + "'; cases:" + known);
         }
     int failed = 0;
+    std::vector<CaseRun> runs;
     for (const ValidationCase* c : chosen) {
         const std::clock_t t0 = std::clock();
         CaseResult r;
@@ -155,8 +160,11 @@ int cmd_validate(const std::vector<std::string>& args) {
         if (!r.details.empty()) std::printf("%s", r.details.c_str());
         if (!crash.empty()) std::printf("    stopped: %s\n", crash.c_str());
         failed += !r.passed();
+        runs.push_back({c->name, c->description, r, cpu, crash});
+        std::fflush(stdout);
     }
     std::printf("%zu passed, %d failed\n", chosen.size() - failed, failed);
+    if (!report.empty()) std::printf("report: %s\n", write_validation_report(report, runs, quick).c_str());
     return failed ? 1 : 0;
 }
 

@@ -11,7 +11,7 @@ namespace plab {
 struct Curve {
     std::string label;
     std::vector<double> x, y;
-    bool reference = false;   // drawn as markers (measured / published data)
+    bool markers = false;     // drawn as markers (data points), else as a line
     double band = 0;          // > 0: shade y (1 +- band), the tolerance around a reference
 };
 struct Plot {

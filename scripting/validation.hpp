@@ -3,6 +3,8 @@
 // (PLAB_VALIDATION_CASE) so later issues add theirs without touching the CLI.
 #pragma once
 
+#include "plot.hpp"
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -14,6 +16,7 @@ struct CaseResult {
     double tolerance = 0;  // passes when error <= tolerance
     std::string metric;    // what `error` measures
     std::string details;   // per-sub-case lines for the report
+    std::vector<Plot> plots;  // optional: series against reference data, drawn by `plab validate --report`
     bool passed() const { return error <= tolerance; }
 };
 
@@ -23,6 +26,18 @@ struct ValidationCase {
 };
 
 std::vector<ValidationCase>& validation_cases();
+
+// One case as run by `plab validate`, for the report.
+struct CaseRun {
+    std::string name, description;
+    CaseResult result;
+    double cpu_seconds = 0;
+    std::string stopped;  // the exception text when the case stopped
+};
+// Writes DIR/report.md (a table of every case: verdict, error, tolerance,
+// CPU time; then per case its details and plots) and DIR/<case>_<k>.png.
+// Returns the path of report.md.
+std::string write_validation_report(const std::string& dir, const std::vector<CaseRun>& runs, bool quick);
 bool register_case(ValidationCase c);
 
 // Directory of the published reference data (shared/reference beside the

@@ -179,8 +179,18 @@ PLAB_VALIDATION_CASE("dam_break",
         runs.push_back(before);
     }
     char line[400];
+    Plot plot{"dam break: surge front", "T = t sqrt(2g/a)", "front x/a", {}};
     for (const DamBreakSpec& s : runs) {
         const DamBreakResult r = dam_break(s);
+        Curve front;
+        std::snprintf(line, sizeof line, "a/dp %.0f, h/dp %.2f, alpha %.2f%s", column_width / s.spacing, s.h_over_dp, s.alpha,
+                      s.no_slip ? "" : ", own-velocity walls");
+        front.label = line;
+        for (std::size_t k = 0; k < r.T.size(); k += std::max<std::size_t>(1, r.T.size() / 400)) {
+            front.x.push_back(r.T[k]);
+            front.y.push_back(r.Z[k]);
+        }
+        plot.curves.push_back(std::move(front));
         std::snprintf(line, sizeof line,
                       "    dp %.4f m (a/dp %.0f), h/dp %.2f, alpha %.2f, delta %.2f, %s walls: %ld fluid balls, %ld steps, "
                       "cpu %.1f s; front error mean %.2f %%, max %.2f %%\n",
@@ -191,6 +201,13 @@ PLAB_VALIDATION_CASE("dam_break",
         // the verdict: the finest run at h/dp 1.3 (the quick run has only one)
         if (quick || (s.spacing == 0.0025 && s.h_over_dp == 1.3 && s.alpha == 0.1 && s.no_slip)) result.error = r.mean_error;
     }
+    Curve reference{"Martin & Moyce (1952)", {}, {}, true, result.tolerance};
+    for (const auto& [T, Z] : martin_moyce(runs.front().end_T)) {
+        reference.x.push_back(T);
+        reference.y.push_back(Z);
+    }
+    plot.curves.push_back(std::move(reference));
+    result.plots.push_back(std::move(plot));
     return result;
 });
 

@@ -212,10 +212,19 @@ PLAB_VALIDATION_CASE("free_fall", "single ball under gravity vs x0 + v0 t + g t^
 
 PLAB_VALIDATION_CASE("restitution", "normal impact, linear model: e and contact time vs the damped oscillator", [](bool) {
     CaseResult r{0, 0.005, "max relative error of e (0.5 %) and of duration/2 (1 % -> same scale)", ""};
+    Plot plot{"restitution of the linear model (2D/3D, ball/wall)", "normal damping ratio beta", "coefficient of restitution e", {}};
+    Curve exact{"exp(-beta pi / sqrt(1 - beta^2))", {}, {}, false, r.tolerance}, measured{"measured", {}, {}, true, 0};
+    for (int k = 0; k <= 60; ++k) {
+        const double beta = 0.6 * k / 60;
+        exact.x.push_back(beta);
+        exact.y.push_back(std::exp(-beta * M_PI / std::sqrt(1 - beta * beta)));
+    }
     for (int dim : {2, 3})
         for (bool wall : {false, true})
             for (double beta : {0.0, 0.05, 0.2, 0.5}) {
                 const Impact im = normal_impact(dim, wall, beta);
+                measured.x.push_back(beta);
+                measured.y.push_back(im.restitution);
                 const double ee = std::fabs(im.restitution - im.expected_restitution) / im.expected_restitution;
                 const double ed = std::fabs(im.duration - im.expected_duration) / im.expected_duration;
                 r.error = std::max({r.error, ee, ed / 2});
@@ -231,6 +240,8 @@ PLAB_VALIDATION_CASE("restitution", "normal impact, linear model: e and contact 
                       im.restitution, im.expected_restitution);
         r.details += buf;
     }
+    plot.curves = {exact, measured};
+    r.plots.push_back(std::move(plot));
     return r;
 });
 
