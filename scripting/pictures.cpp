@@ -82,8 +82,11 @@ void save(cairo_surface_t* surface, const std::string& path) {
     std::filesystem::rename(tmp, path);
 }
 
+} // namespace
+
 // Bounding box of the balls and finite wall facets (x–y).
-void scene_bounds(const World& w, double& x0, double& y0, double& x1, double& y1) {
+std::vector<double> snapshot_view(const World& w) {
+    double x0, y0, x1, y1;
     x0 = y0 = kInf;
     x1 = y1 = -kInf;
     auto grow = [&](double x, double y, double r) {
@@ -97,10 +100,8 @@ void scene_bounds(const World& w, double& x0, double& y0, double& x1, double& y1
     if (!(x1 > x0)) { x0 = -1; x1 = 1; }
     if (!(y1 > y0)) { y0 = -1; y1 = 1; }
     const double pad = 0.03 * std::max(x1 - x0, y1 - y0);
-    x0 -= pad; x1 += pad; y0 -= pad; y1 += pad;
+    return {x0 - pad, y0 - pad, x1 + pad, y1 + pad};
 }
-
-} // namespace
 
 std::vector<std::string> snapshot_field_names(const World& w) {
     std::vector<std::string> names = {"velocity", "force", "group", "id", "stress_xx", "stress_yy", "stress_xy",
@@ -155,8 +156,8 @@ void write_snapshot_png(const World& w, const SnapshotOptions& opt, const std::s
         if (std::isfinite(v)) { vmin = std::min(vmin, v); vmax = std::max(vmax, v); }
     if (!(vmax > vmin)) { vmin = std::isfinite(vmin) ? vmin : 0.0; vmax = vmin + 1.0; }
 
-    double x0, y0, x1, y1;
-    scene_bounds(w, x0, y0, x1, y1);
+    const std::vector<double> view = opt.view.size() == 4 ? opt.view : snapshot_view(w);
+    const double x0 = view[0], y0 = view[1], x1 = view[2], y1 = view[3];
     const int bar_w = 110, footer = 46, W = std::max(300, opt.width);
     const double scale = double(W - bar_w) / (x1 - x0);  // px per metre
     const int H = int(std::ceil((y1 - y0) * scale)) + footer;
@@ -164,6 +165,8 @@ void write_snapshot_png(const World& w, const SnapshotOptions& opt, const std::s
     cairo_t* cr = cairo_create(surface);
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
+    cairo_rectangle(cr, 0, 0, W - bar_w, H - footer);  // balls that left the view are cut, not drawn over the legend
+    cairo_clip(cr);
     auto px = [&](double x) { return (x - x0) * scale; };
     auto py = [&](double y) { return (y1 - y) * scale; };
 
@@ -205,8 +208,11 @@ void write_snapshot_png(const World& w, const SnapshotOptions& opt, const std::s
         cairo_set_line_width(cr, 2.5);
         for (const BondBreak& br : w.bond_breaks) {
             if (!index.count(br.id1) || !index.count(br.id2)) continue;
-            const Vec& p = b.position[index[br.id1]];
-            const Vec& q = b.position[index[br.id2]];
+            const std::size_t i = index[br.id1], j = index[br.id2];
+            const Vec& p = b.position[i];
+            const Vec& q = b.position[j];
+            // once the pieces have flown apart a line would cross the picture: the colour says enough
+            if ((p - q).norm() > 1.5 * (b.radius[i] + b.radius[j])) continue;
             cairo_move_to(cr, px(p.x()), py(p.y()));
             cairo_line_to(cr, px(q.x()), py(q.y()));
             cairo_stroke(cr);
@@ -216,6 +222,7 @@ void write_snapshot_png(const World& w, const SnapshotOptions& opt, const std::s
             cairo_stroke(cr);
         }
     }
+    cairo_reset_clip(cr);
     // colour bar (or group legend) on the right
     const double bx = W - bar_w + 20, by = 30, bh = std::max(100.0, std::min(300.0, H - footer - 60.0));
     cairo_set_source_rgb(cr, 1, 1, 1);
@@ -312,8 +319,18 @@ void write_plot_png(const Plot& plot, const std::string& path, int W, int H) {
     cairo_clip(cr);
     for (std::size_t c = 0; c < plot.curves.size(); ++c) {
         const Curve& cv = plot.curves[c];
-        if (cv.band <= 0 || cv.x.size() < 2) continue;
+        if (cv.band <= 0) continue;
         const Rgb col = category(int(c));
+        cairo_set_source_rgba(cr, col.r, col.g, col.b, 0.35);
+        if (cv.markers) {  // scattered points (several series, unsorted): an error bar each
+            cairo_set_line_width(cr, 5);
+            for (std::size_t k = 0; k < cv.x.size(); ++k) {
+                cairo_move_to(cr, px(cv.x[k]), py(cv.y[k] * (1 - cv.band)));
+                cairo_line_to(cr, px(cv.x[k]), py(cv.y[k] * (1 + cv.band)));
+            }
+            cairo_stroke(cr);
+            continue;
+        }
         cairo_set_source_rgba(cr, col.r, col.g, col.b, 0.18);
         for (std::size_t k = 0; k < cv.x.size(); ++k) cairo_line_to(cr, px(cv.x[k]), py(cv.y[k] * (1 + cv.band)));
         for (std::size_t k = cv.x.size(); k-- > 0;) cairo_line_to(cr, px(cv.x[k]), py(cv.y[k] * (1 - cv.band)));

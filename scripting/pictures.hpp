@@ -22,7 +22,12 @@ struct SnapshotOptions {
     std::string field = "velocity";  // one of snapshot_field_names()
     int width = 1000;                // px; the height follows the scene's aspect
     bool bonds = true;               // draw intact bonds (grey) and broken ones (red)
+    // The region drawn, m (x0, y0, x1, y1); empty: the balls and walls now.
+    // A frame series keeps one view so the frames line up as an animation.
+    std::vector<double> view;
 };
+// The default view: balls and finite walls, with a 3 % margin.
+std::vector<double> snapshot_view(const World& w);
 // Per-ball values of `field` with its unit; throws InputError("field", ...)
 // naming the known fields if it is unknown.
 std::vector<double> snapshot_values(const World& w, const std::string& field, std::string& unit);

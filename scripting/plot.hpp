@@ -12,7 +12,8 @@ struct Curve {
     std::string label;
     std::vector<double> x, y;
     bool markers = false;     // drawn as markers (data points), else as a line
-    double band = 0;          // > 0: shade y (1 +- band), the tolerance around a reference
+    double band = 0;          // > 0: y (1 +- band), the tolerance around a reference (a shaded band
+                              // along a line, an error bar on each marker)
 };
 struct Plot {
     std::string title, x_label, y_label;
