@@ -226,7 +226,12 @@ void Simulation::load_timestep(const Node& n) {
     n.allow_keys({"fixed", "safety_factor", "allow_unstable"});
     World& w = *world_;
     w.safety_factor = n.number_or("safety_factor", 0.8, 0.0, 1.0, true, false);
-    const StableStep s = w.nominal_timestep();  // also refuses a model that reports no stable step
+    StableStep s;
+    try {
+        s = w.nominal_timestep();  // also refuses a model that reports no stable step
+    } catch (const PluginError& e) {
+        throw InputError("scene.contact_models", e.what());
+    }
     if (!n.has("fixed")) return;
     w.fixed_dt = n.at("fixed").positive();
     const bool allow = n.has("allow_unstable") && n.at("allow_unstable").boolean();

@@ -67,9 +67,9 @@ StableStep probe_contact(const ModelInstance& inst, int dim, const Probe& a, con
     if (kr_a > 0) consider(std::sqrt(a.inertia / kr_a), "model " + inst.model + ": sqrt(I/k_r) of one contact");
     consider(dtl, "model " + inst.model + ": its step limit");
     if (kt <= 0 && !(dtl < kInf))
-        throw PluginError("contact model '" + inst.model +
-                          "' reports no stable timestep: its law must call set_stiffness() or set_dt_limit() "
-                          "for every active contact");
+        throw PluginError("contact model '" + inst.model + "' reports no stable timestep for a touching contact: its law must call set_stiffness() or "
+                          "set_dt_limit() for every active contact — c.set_stiffness(k) with the contact's stiffness "
+                          "in N/m, or c.set_dt_limit(dt) in s when the stiffness vanishes at first touch (as Hertz's does)");
     return out;
 }
 
