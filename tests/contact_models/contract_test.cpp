@@ -157,6 +157,7 @@ struct Model {
 
 std::vector<std::unique_ptr<Model>> every_model(PluginHost& host) {
     std::vector<std::unique_ptr<Model>> out;
+    host.add_search_dir(PLAB_TEACHING_PLUGIN_DIR);  // the tutorial's hertz, a model written out of tree
     for (const auto& path : host.discover()) host.load(path);
     for (const auto& name : host.model_names()) {
         const plab_contact_model_desc* d = host.model(name);
