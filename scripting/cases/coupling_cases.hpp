@@ -1,0 +1,40 @@
+// Measurements behind the SPH–DEM coupling validation cases (plug-in
+// `coupling_fluid_particle`). tests/physics/coupling_test.cpp calls the same
+// functions and asserts the physics with stated tolerances.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <vector>
+
+namespace plab::cases {
+
+// Thesis §7.1: one disc (ρ_s = 1250, r = 1.25 mm) settling from 0.04 m in a
+// closed 0.02 × 0.06 m box of fluid (ρ_f = 1000, μ = 0.01 Pa s), unresolved
+// coupling (the disc is one DEM ball; the fluid particles overlap it).
+struct SedimentationSpec {
+    double spacing = 0.00125;     // fluid particle spacing dp, m (must divide 0.02 and 0.06)
+    double h_over_dp = 2.0;       // thesis: h = 3 mm at dp = 1.5 mm
+    double speed_of_sound = 0;    // m/s; 0: 10 sqrt(g H)
+    int drag_2d = 0;              // 0 cylinder, 1 thesis (sphere Cd on the disc), drag_law.hpp
+    int buoyancy = 0;             // 0 -V grad p, 1 thesis eq. 75
+    double end_time = 0.8;        // s
+};
+
+struct SedimentationResult {
+    std::vector<double> t, y, v;       // disc centre height (m) and vertical velocity (m/s)
+    double terminal_velocity = 0;      // mean v over 0.35 <= t <= 0.66 s (the reference's plateau window), m/s
+    double velocity_rms = 0;           // RMS of v - v_ref over the Glowinski points with t <= end, m/s
+    double height_rms = 0;             // RMS of y - y_ref over Zhang's points with t <= end, m
+    double cpu_seconds = 0;
+    long steps = 0;
+    int fluid = 0, boundary = 0;
+};
+
+nlohmann::json sedimentation_scene(const SedimentationSpec& s);
+SedimentationResult sedimentation(const SedimentationSpec& s);
+
+// The reference's terminal velocity (Glowinski et al. 2001), m/s.
+constexpr double glowinski_terminal_velocity = 0.0555;
+
+} // namespace plab::cases
