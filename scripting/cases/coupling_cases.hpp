@@ -23,6 +23,7 @@ struct SedimentationSpec {
 
 struct SedimentationResult {
     std::vector<double> t, y, v;       // disc centre height (m) and vertical velocity (m/s)
+    std::vector<double> voidage, fluid_force_y, drag_coefficient;  // ε_p, fluid force (N/m), K (N s/m²) at the disc
     double terminal_velocity = 0;      // mean v over 0.35 <= t <= 0.66 s (the reference's plateau window), m/s
     double velocity_rms = 0;           // RMS of v - v_ref over the Glowinski points with t <= end, m/s
     double height_rms = 0;             // RMS of y - y_ref over Zhang's points with t <= end, m
@@ -33,6 +34,27 @@ struct SedimentationResult {
 
 nlohmann::json sedimentation_scene(const SedimentationSpec& s);
 SedimentationResult sedimentation(const SedimentationSpec& s);
+
+// Thesis §7.3, Table 7 (Antoci et al. 2007): elastic gate under a dam break.
+struct ElasticGateSpec {
+    double spacing = 0.00175;      // fluid particle spacing dp, m (Table 7); h = 1.25 dp
+    double gate_radius = 0.000625; // gate ball radius, m (Table 7: size 1.25 mm)
+    double clearance = 0.0;        // gap between the floor and the gate's lattice box, m
+    int pressure_mode = 1;         // structure_sph_state: 0 thesis (p = 0), 1 extrapolated
+    double end_time = 0.4;         // s
+};
+
+struct ElasticGateResult {
+    std::vector<double> t, dx, dy;   // free-end displacement, m
+    double rms_x_rel = 0, rms_y_rel = 0;  // RMS against the experiment / its peak
+    double peak_x = 0, peak_time = 0, peak_x_ref = 0, peak_time_ref = 0;
+    long bonds = 0, broken = 0, steps = 0;
+    int fluid = 0, gate = 0;
+    double cpu_seconds = 0;
+};
+
+nlohmann::json elastic_gate_scene(const ElasticGateSpec& s);
+ElasticGateResult elastic_gate(const ElasticGateSpec& s);
 
 // The reference's terminal velocity (Glowinski et al. 2001), m/s.
 constexpr double glowinski_terminal_velocity = 0.0555;

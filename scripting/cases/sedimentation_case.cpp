@@ -152,7 +152,11 @@ SedimentationResult sedimentation(const SedimentationSpec& s) {
         r.boundary += grp == boundary_group;
     }
     const std::clock_t c_start = std::clock();
+    const int eps = w.field_index("voidage"), fy = w.field_index("fp_force_y"), K = w.field_index("fp_drag_coefficient");
     auto record = [&]() {
+        r.voidage.push_back(w.field(eps)[disc]);
+        r.fluid_force_y.push_back(w.field(fy)[disc]);
+        r.drag_coefficient.push_back(w.field(K)[disc]);
         r.t.push_back(w.time);
         r.y.push_back(w.bodies.position[disc].y());
         r.v.push_back(w.bodies.velocity[disc].y());
