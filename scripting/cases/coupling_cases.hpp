@@ -37,7 +37,7 @@ SedimentationResult sedimentation(const SedimentationSpec& s);
 
 // Thesis §7.3, Table 7 (Antoci et al. 2007): elastic gate under a dam break.
 struct ElasticGateSpec {
-    double spacing = 0.00175;      // fluid particle spacing dp, m (Table 7); h = 1.25 dp
+    double spacing = 0.0025;       // fluid particle spacing dp, m (Table 7: 1.75 mm); h = 1.25 dp (Table 7)
     double gate_radius = 0.000625; // gate ball radius, m (Table 7: size 1.25 mm)
     double clearance = 0.0;        // gap between the floor and the gate's lattice box, m
     int pressure_mode = 1;         // structure_sph_state: 0 thesis (p = 0), 1 extrapolated
