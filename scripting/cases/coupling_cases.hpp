@@ -56,6 +56,24 @@ struct ElasticGateResult {
 nlohmann::json elastic_gate_scene(const ElasticGateSpec& s);
 ElasticGateResult elastic_gate(const ElasticGateSpec& s);
 
+// Thesis §7.4: the gate clamped at the bottom with a lowered strength.
+struct GateFractureSpec {
+    double spacing = 0.0025, gate_radius = 0.000625;  // as ElasticGateSpec
+    double strength = 1.5e5; // sigma_ult of the hexagonal calibration, Pa (the hydrostatic bending stress at the clamp is ~1.3e5)
+    double end_time = 0.3;   // s
+};
+
+struct GateFractureResult {
+    long bonds = 0, broken = 0, steps = 0;
+    double first_break_time = -1, first_break_y = -1;  // s, m
+    double min_x = 0, max_x = 0, min_y = 0;             // extent of the gate balls' centres over the run, m
+    bool penetrated = false;                            // a centre crossed a wall surface
+    double cpu_seconds = 0;
+};
+
+nlohmann::json gate_fracture_scene(const GateFractureSpec& s);
+GateFractureResult gate_fracture(const GateFractureSpec& s);
+
 // The reference's terminal velocity (Glowinski et al. 2001), m/s.
 constexpr double glowinski_terminal_velocity = 0.0555;
 

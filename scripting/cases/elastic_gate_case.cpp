@@ -212,7 +212,8 @@ using namespace plab::cases;
 // Full: the thesis's gate (balls R 0.625 mm, four across the thickness) in
 // fluid at dp 2.5 mm (Table 7: 1.75 mm, twice the cost), 0.4 s. Quick: dp
 // 5 mm, R 1.25 mm (two across), 0.2 s (past the peak at ~0.16 s). The error figure is the RMS of the x
-// displacement relative to its peak; the peak time is held to 0.03 s too.
+// displacement relative to its peak (quick: 0.2, measured 0.138); the peak
+// time is held to 0.03 s too.
 PLAB_VALIDATION_CASE("elastic_gate",
                      "SPH-DEM fluid-structure coupling (thesis 7.3, Antoci et al. 2007): rubber gate tip displacement",
                      [](bool quick) {
@@ -220,7 +221,7 @@ PLAB_VALIDATION_CASE("elastic_gate",
     if (quick) { s.spacing = 0.005; s.gate_radius = 0.00125; s.end_time = 0.2; }
     const ElasticGateResult t = elastic_gate(s);
     const double peak_dt = std::fabs(t.peak_time - t.peak_time_ref);
-    CaseResult r{t.rms_x_rel, quick ? 0.3 : 0.15,
+    CaseResult r{t.rms_x_rel, quick ? 0.2 : 0.15,
                  "RMS of the free end's x displacement against Antoci 2007, relative to its peak (0.046 m)", ""};
     char buf[600];
     std::snprintf(buf, sizeof buf,
