@@ -18,6 +18,7 @@ struct SedimentationSpec {
     double speed_of_sound = 0;    // m/s; 0: 10 sqrt(g H)
     int drag_2d = 0;              // 0 cylinder, 1 thesis (sphere Cd on the disc), drag_law.hpp
     int buoyancy = 0;             // 0 -V grad p, 1 thesis eq. 75
+    double coupling_length = 0;   // smoothing length of the coupling's voidage / Shepard kernel, m; 0: the fluid's h
     double end_time = 0.8;        // s
 };
 

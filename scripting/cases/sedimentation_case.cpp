@@ -88,7 +88,8 @@ json sedimentation_scene(const SedimentationSpec& s) {
     const double t = std::ceil(2 * h / db) * db;  // boundary layers fill the kernel support 2h
     const json sph = {{"smoothing_length", h}, {"kernel", 0}, {"rest_density", rho_f}, {"speed_of_sound", c0},
                       {"viscosity", 0}, {"mu", mu}};
-    const json kernel = {{"smoothing_length", h}, {"kernel", 0}};
+    // the coupling may smooth over more than the fluid's kernel (docs/coupling.md)
+    const json kernel = {{"smoothing_length", s.coupling_length > 0 ? s.coupling_length : h}, {"kernel", 0}};
     json drag = kernel;
     drag.update({{"fluid_group", fluid_group}, {"solid_group", disc_group}, {"rest_density", rho_f}, {"mu", mu},
                  {"drag_2d", s.drag_2d}, {"buoyancy", s.buoyancy}, {"gravity_y", -g}});

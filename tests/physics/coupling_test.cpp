@@ -173,21 +173,22 @@ TEST_CASE("quick sedimentation settles at the reference terminal velocity within
 // Not part of the test run (hidden tag): the resolution and drag-law study
 // of docs/coupling.md, `build/tests/plab_tests "[.sedimentation_study]"`.
 TEST_CASE("sedimentation study: terminal velocity against d/dp and the 2D drag reading", "[.sedimentation_study]") {
-    const char* env = std::getenv("PLAB_STUDY");  // e.g. "0.0025:0:0.45,0.00125:1:0.8" = dp:drag_2d:end[:h/dp[:buoyancy]]
+    const char* env = std::getenv("PLAB_STUDY");  // e.g. "0.0025:0:0.45,0.00125:1:0.8" = dp:drag_2d:end[:h/dp[:buoyancy[:h_coupling]]]
     std::string spec = env ? env : "0.0025:0:0.8,0.002:0:0.8,0.00125:0:0.8,0.001:0:0.8";
     std::stringstream ss(spec);
     std::string item;
     while (std::getline(ss, item, ',')) {
         cases::SedimentationSpec s;
-        double v[5] = {0.0025, 0, 0.8, 2.0, 0};
+        double v[6] = {0.0025, 0, 0.8, 2.0, 0, 0};
         std::stringstream is(item);
         std::string tok;
-        for (int k = 0; k < 5 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
+        for (int k = 0; k < 6 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
         s.spacing = v[0]; s.drag_2d = int(v[1]); s.end_time = v[2]; s.h_over_dp = v[3]; s.buoyancy = int(v[4]);
+        s.coupling_length = v[5];
         const cases::SedimentationResult r = cases::sedimentation(s);
-        std::printf("dp %.5f d/dp %.2f h/dp %.2f drag_2d %d buoyancy %d: terminal %.4f m/s (err %+.1f %%), RMS v %.4f m/s, "
+        std::printf("h_c %.4f dp %.5f d/dp %.2f h/dp %.2f drag_2d %d buoyancy %d: terminal %.4f m/s (err %+.1f %%), RMS v %.4f m/s, "
                     "RMS y %.4f m, %ld steps, %.0f s CPU\n",
-                    s.spacing, 0.0025 / s.spacing, s.h_over_dp, s.drag_2d, s.buoyancy, r.terminal_velocity,
+                    s.coupling_length, s.spacing, 0.0025 / s.spacing, s.h_over_dp, s.drag_2d, s.buoyancy, r.terminal_velocity,
                     100 * (r.terminal_velocity / cases::glowinski_terminal_velocity - 1), r.velocity_rms, r.height_rms,
                     r.steps, r.cpu_seconds);
         if (std::getenv("PLAB_STUDY_HISTORY"))
@@ -282,5 +283,27 @@ TEST_CASE("a structure floor in the SPH sums carries the weight of the water abo
         // extrapolated pressure (mode 1): within 5 %; the thesis's p = 0 (mode 0) pushes with about half
         if (mode == 1) CHECK(-on_floor == Approx(weight).epsilon(0.05));
         else CHECK(-on_floor < 0.75 * weight);
+    }
+}
+
+// Not part of the test run (hidden tag): gate fracture at chosen settings,
+// PLAB_STUDY="dp:R:end:strength", comma-separated.
+TEST_CASE("gate fracture study", "[.gate_fracture_study]") {
+    const char* env = std::getenv("PLAB_STUDY");
+    std::stringstream ss(env ? env : "0.005:0.00125:0.2:4e5");
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        cases::GateFractureSpec s;
+        double v[4] = {0.005, 0.00125, 0.2, 4e5};
+        std::stringstream is(item);
+        std::string tok;
+        for (int k = 0; k < 4 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
+        s.spacing = v[0]; s.gate_radius = v[1]; s.end_time = v[2]; s.strength = v[3];
+        const cases::GateFractureResult r = cases::gate_fracture(s);
+        std::printf("dp %.4f R %.5f strength %.3g: %ld of %ld broken, first at %.3f s y %.4f; x [%.4f, %.4f], min y %.4f, "
+                    "penetrated %d; %ld steps, %.0f s CPU\n",
+                    s.spacing, s.gate_radius, s.strength, r.broken, r.bonds, r.first_break_time, r.first_break_y, r.min_x,
+                    r.max_x, r.min_y, int(r.penetrated), r.steps, r.cpu_seconds);
+        std::fflush(stdout);
     }
 }
