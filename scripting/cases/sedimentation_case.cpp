@@ -9,7 +9,10 @@
 // the thesis-like resolution), laminar μ = 0.01 Pa s, disc ρ = 1250,
 // r = 1.25 mm released at rest from (0.01, 0.04). The disc meets the floor
 // through a `linear` contact with a wall (the SPH boundary balls are for the
-// fluid only).
+// fluid only). The coupling's kernel (voidage, Shepard sums, reaction shares)
+// has its own smoothing length, 6 mm ≈ 2.4 d by default: an averaging length
+// of a few particle diameters, independent of the fluid resolution
+// (docs/coupling.md has the study that chose it).
 #include "coupling_cases.hpp"
 #include "sph_cases.hpp"
 
@@ -188,23 +191,26 @@ using namespace plab;
 using namespace plab::cases;
 
 // Full: dp = 1.25 mm (d/dp = 2, the thesis' resolution is d/dp = 1.67) to
-// 0.8 s. Quick: dp = 2.5 mm (d/dp = 1) to 0.45 s. The error figure is the
-// terminal-velocity error relative to 0.0555 m/s.
+// 0.8 s. Quick: dp = 2.5 mm (d/dp = 1) to 0.7 s (measured +7.7 %, held to
+// 10 %; a shorter run leaves too little of the noisy plateau). Both with the 6 mm
+// coupling kernel. The error figure is the terminal-velocity error relative
+// to 0.0555 m/s.
 PLAB_VALIDATION_CASE("sedimentation",
                      "SPH-DEM unresolved coupling (thesis 7.1): disc settling in a box vs Glowinski et al. 2001",
                      [](bool quick) {
     SedimentationSpec s;
-    if (quick) { s.spacing = 0.0025; s.end_time = 0.45; }
+    if (quick) { s.spacing = 0.0025; s.end_time = 0.7; }
     const SedimentationResult t = sedimentation(s);
     const double err = std::fabs(t.terminal_velocity - glowinski_terminal_velocity) / glowinski_terminal_velocity;
-    CaseResult r{err, quick ? 0.15 : 0.05,
+    CaseResult r{err, quick ? 0.10 : 0.05,
                  "relative error of the terminal velocity (mean over 0.35-0.66 s) against 0.0555 m/s", ""};
     char buf[400];
     std::snprintf(buf, sizeof buf,
-                  "    %d fluid + %d boundary balls, dp %.4g m (d/dp %.2f), h/dp %.2f, t = %.2f s, %ld steps, %.1f s CPU\n"
+                  "    %d fluid + %d boundary balls, dp %.4g m (d/dp %.2f), h/dp %.2f, coupling kernel h_c %.4g m, t = %.2f s, "
+                  "%ld steps, %.1f s CPU\n"
                   "    terminal velocity %.4f m/s (reference 0.0555); RMS velocity error %.4f m/s; RMS height error "
                   "%.4f m (vs Zhang 2019)\n",
-                  t.fluid, t.boundary, s.spacing, 2 * 0.00125 / s.spacing, s.h_over_dp, s.end_time, t.steps,
+                  t.fluid, t.boundary, s.spacing, 2 * 0.00125 / s.spacing, s.h_over_dp, s.coupling_length, s.end_time, t.steps,
                   t.cpu_seconds, t.terminal_velocity, t.velocity_rms, t.height_rms);
     r.details = buf;
     return r;
