@@ -456,6 +456,11 @@ void Simulation::run() {
             case Command::output: if (!out_dir_.empty()) write_vtk_snapshot(); break;
             }
         }
+    } catch (const RunError&) {
+        // the world is back at its last good state: keep it for inspection
+        if (!out_dir_.empty()) write_vtk_snapshot();
+        finish_run(cpu0);
+        throw;
     } catch (...) {
         finish_run(cpu0);
         throw;

@@ -99,6 +99,7 @@ private:
     void load_walls(const Node& n);
     void load_contact_models(const Node& n);
     void load_passes(const Node& n);
+    void load_stability(const Node& n);
     void load_timestep(const Node& n);
     void load_histories(const Node& n);
     void load_output(const Node& n);
