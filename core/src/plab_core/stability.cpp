@@ -131,7 +131,7 @@ void World::check_energy() {
     const double work = std::fabs(e.body - b.body) + std::fabs(e.boundary - b.boundary);
     b.max_work = std::max(b.max_work, work);
     const double dissipated = e.slip + e.dashpot + e.local_damping + e.bond_break - b.dissipated;
-    const double turnover = b.stored + b.max_work + std::max(dissipated, 0.0) + b.potential;
+    const double turnover = b.stored + b.max_work + std::max(dissipated, 0.0) + 0.01 * b.potential;
     const double gain = e.balance() - b.balance;
     if (!(gain > 0) || gain <= stability.energy_gain * turnover) return;
     std::size_t top = 0;

@@ -17,8 +17,9 @@ struct StabilityLimits {
     // Energy that appears from nowhere: the gain of the energy balance
     // (kinetic + strain - work done + dissipated) since the last change of
     // the scene, as a fraction of the energy turned over (initial kinetic and
-    // strain energy, work done, dissipated energy, and the potential energy
-    // m |g| L the particles hold over their own extent L along gravity).
+    // strain energy, work done, dissipated energy, and 1 % of the potential
+    // energy m |g| L the particles hold over their own extent L along
+    // gravity: a floor for scenes at rest, where the other terms are ~0).
     // A stable leapfrog keeps it at O(dt²); an unstable one grows it
     // exponentially, so the threshold only sets how early the detector fires.
     double energy_gain = 0.5;  // 1, (0, inf); inf: off
