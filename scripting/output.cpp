@@ -236,6 +236,7 @@ json Simulation::summary() const {
                         {"detail", d.detail}, {"likely_cause", d.cause}, {"last_good_step", w.step_count},
                         {"message", d.message()}};
     }
+    if (!metrics_.is_null()) s["metrics"] = metrics_;
     std::ostringstream hash;
     hash << std::hex << w.state_hash();
     s["state_hash"] = hash.str();

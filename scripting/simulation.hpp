@@ -90,6 +90,7 @@ private:
     SnapshotOptions png_;
     void write_png_snapshot();
     RunSummary run_;
+    json metrics_;  // evaluated `metrics` of the scene (metrics.cpp)
     std::string timestep_note_;
     std::chrono::steady_clock::time_point started_;
 
