@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -72,6 +73,9 @@ pid_t launch(const std::string& exe, const std::string& scene, const std::vector
         std::vector<char*> c;
         for (auto& s : argv) c.push_back(s.data());
         c.push_back(nullptr);
+        // one thread per run unless the user says otherwise: on a busy machine
+        // OpenMP's barriers make a 2-thread run several times slower (types.hpp)
+        if (!std::getenv("OMP_NUM_THREADS")) setenv("OMP_NUM_THREADS", "1", 1);
         const std::string log = p.dir + "/run.log";
         if (FILE* f = std::fopen(log.c_str(), "w")) {
             dup2(fileno(f), STDOUT_FILENO);
