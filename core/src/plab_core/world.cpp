@@ -183,6 +183,7 @@ void World::prepare() {
     last_dt = dt;
     prepared_ = true;
     set_stability_baseline();
+    stopped = Diagnostic{};  // a run that goes on after a stop is running again
 }
 
 // Kick–drift–kick form of the leapfrog (thesis eqs. 32–36): the same
