@@ -1,5 +1,6 @@
 // The command sequence (cycle, solve, set, output) and recorded histories.
 #include "generators.hpp"
+#include "metrics.hpp"
 #include "simulation.hpp"
 
 #include <spdlog/spdlog.h>
@@ -398,6 +399,7 @@ void Simulation::finish_run(std::clock_t cpu0) {
     run_.simulated_time = w.time;
     run_.particle_steps_per_second =
         run_.wall_seconds > 0 ? double(run_.steps) * double(w.bodies.size()) / run_.wall_seconds : 0;
+    if (scene_.contains("metrics")) metrics_ = evaluate_metrics(scene_["metrics"], *this, scene_dir_);
     if (!out_dir_.empty()) write_outputs();
 }
 
@@ -456,6 +458,11 @@ void Simulation::run() {
             case Command::output: if (!out_dir_.empty()) write_vtk_snapshot(); break;
             }
         }
+    } catch (const RunError&) {
+        // the world is back at its last good state: keep it for inspection
+        if (!out_dir_.empty()) write_vtk_snapshot();
+        finish_run(cpu0);
+        throw;
     } catch (...) {
         finish_run(cpu0);
         throw;

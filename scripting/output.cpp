@@ -3,6 +3,7 @@
 // to a temporary name and renamed, so a killed run never leaves half a file.
 #include "simulation.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -155,6 +156,30 @@ std::string walls_vtp(const World& w) {
     return v.finish();
 }
 
+// What makes a model expensive (issue 7): its contacts, the neighbours per
+// body, and the stable step its contacts allow on their own (one contact:
+// sqrt(m/k) of the lighter end, or the model's direct step limit).
+json cost_drivers(const ModelInstance& inst, std::size_t bodies) {
+    std::size_t active = 0, ball_active = 0;
+    double stable = kInf;
+    for (const ContactSet* s : {&inst.balls, &inst.walls})
+        for (std::size_t k = 0; k < s->size(); ++k) {
+            if (!s->active[k]) continue;
+            ++active;
+            ball_active += !s->with_wall;
+            const double m = std::min(s->mass1[k], s->mass2[k]);
+            if (s->k_t[k] > 0) stable = std::min(stable, std::sqrt(m / s->k_t[k]));
+            stable = std::min(stable, s->dt_limit[k]);
+        }
+    json j = {{"model", inst.model},
+              {"candidate_pairs", inst.balls.size() + inst.walls.size()},
+              {"active_contacts", active},
+              {"neighbours_per_body", bodies ? 2.0 * double(ball_active) / double(bodies) : 0.0}};
+    if (stable < kInf) j["stable_dt"] = stable;
+    else j["stable_dt"] = nullptr;
+    return j;
+}
+
 } // namespace
 
 void Simulation::write_vtk_snapshot() {
@@ -203,14 +228,15 @@ json Simulation::summary() const {
     for (int p = 0; p < ph_count; ++p) phases[phase_names[p]] = w.phase_seconds[p];
     s["phase_seconds"] = phases;
     json models = json::array();
-    for (const auto& inst : w.instances()) {
-        std::size_t active = 0;
-        for (std::uint8_t a : inst->balls.active) active += a;
-        for (std::uint8_t a : inst->walls.active) active += a;
-        models.push_back({{"model", inst->model}, {"candidate_pairs", inst->balls.size() + inst->walls.size()},
-                          {"active_contacts", active}});
-    }
+    for (const auto& inst : w.instances()) models.push_back(cost_drivers(*inst, w.bodies.size()));
     s["models"] = models;
+    if (!w.stopped.quantity.empty()) {
+        const Diagnostic& d = w.stopped;
+        s["stopped"] = {{"quantity", d.quantity}, {"subject", d.subject}, {"step", d.step}, {"time", d.time},
+                        {"detail", d.detail}, {"likely_cause", d.cause}, {"last_good_step", w.step_count},
+                        {"message", d.message()}};
+    }
+    if (!metrics_.is_null()) s["metrics"] = metrics_;
     std::ostringstream hash;
     hash << std::hex << w.state_hash();
     s["state_hash"] = hash.str();

@@ -2,6 +2,7 @@
 #include "new_model.hpp"
 #include "plot_command.hpp"
 #include "simulation.hpp"
+#include "sweep.hpp"
 #include "validation.hpp"
 
 #include <plab_core/plugin_host.hpp>
@@ -21,6 +22,7 @@ namespace {
 const char* usage =
     "usage:\n"
     "  plab run SCENE.json [--set PATH=VALUE]... [--out DIR] [--quiet]\n"
+    "  plab sweep SCENE.json --vary PATH=v1,v2 [--vary ...] [--set PATH=VALUE]... [--jobs N] [--out DIR]\n"
     "  plab plugins [--describe MODEL]\n"
     "  plab validate CASE... | --list | --all [--quick] [--report DIR]\n"
     "  plab new-model NAME [DIR]   (an out-of-tree contact-model project)\n"
@@ -181,6 +183,7 @@ int main(int argc, char** argv) {
     try {
         if (cmd == "run") return cmd_run(args);
         if (cmd == "plugins") return cmd_plugins(args);
+        if (cmd == "sweep") return cmd_sweep(args, fs::read_symlink("/proc/self/exe").string());
         if (cmd == "validate") return cmd_validate(args);
         if (cmd == "new-model") return cmd_new_model(args);
         if (cmd == "plot") return cmd_plot(args);

@@ -47,7 +47,8 @@ Simulation::~Simulation() = default;
 
 void Simulation::load(const Node& root) {
     root.allow_keys({"description", "dimension", "domain", "gravity", "plugins", "bodies", "walls", "materials",
-                     "contact_models", "passes", "timestep", "skin", "histories", "output", "commands", "validation"});
+                     "contact_models", "passes", "timestep", "skin", "histories", "output", "commands", "validation",
+                     "stability", "metrics"});
     const int dim = int(root.at("dimension").integer(2, 3));
     world_ = std::make_unique<World>(dim, host_);
     if (root.has("domain")) {
@@ -61,6 +62,7 @@ void Simulation::load(const Node& root) {
         if (dim == 2) { domain_min_.z() = -kInf; domain_max_.z() = kInf; }
     }
     world_->gravity = root.vec_or("gravity", dim, Vec::Zero());
+    load_stability(root.has("stability") ? root.at("stability") : Node(json::object(), "scene.stability"));
     if (root.has("skin")) world_->skin = root.at("skin").number(0.0, kInf, false, true);
     load_plugins(root.has("plugins") ? root.at("plugins") : Node(json::array(), "scene.plugins"));
     if (root.has("bodies")) load_bodies(root.at("bodies"));
@@ -145,7 +147,7 @@ void Simulation::load_contact_models(const Node& n) {
     World& w = *world_;
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node rule = n.at(i);
-        rule.allow_keys({"groups", "model", "properties", "calibrate"});
+        rule.allow_keys({"groups", "model", "properties", "calibrate", "max_overlap"});
         const Node groups = rule.at("groups");
         if (!groups.value().is_array() || groups.size() != 2)
             groups.fail("expected two group names, e.g. [\"grains\", \"walls\"] (\"*\" for any), got " + show(groups.value()));
@@ -197,9 +199,26 @@ void Simulation::load_contact_models(const Node& n) {
         } else if (rule.has("properties")) {
             rule.at("properties").fail("the null model has no properties");
         }
+        if (rule.has("max_overlap")) {
+            if (instance < 0) rule.at("max_overlap").fail("the null model makes no contact to limit");
+            // fraction of the smaller radius beyond which the detector stops the run
+            w.instances()[std::size_t(instance)]->max_overlap = rule.at("max_overlap").number(0.0, kInf, true, true);
+        }
         for (int a : sides[0])
             for (int b : sides[1]) w.assign(a, b, instance);
     }
+}
+
+// The instability detector's limits (core/src/plab_core/stability.hpp);
+// the domain is the scene's `domain` when it has one.
+void Simulation::load_stability(const Node& n) {
+    n.allow_keys({"enabled", "energy_gain", "domain_margin"});
+    StabilityLimits& s = world_->stability;
+    if (n.has("enabled")) s.enabled = n.at("enabled").boolean();
+    s.energy_gain = n.number_or("energy_gain", s.energy_gain, 0.0, kInf, true, true);
+    s.domain_margin = n.number_or("domain_margin", s.domain_margin, 0.0, kInf, false, true);
+    s.domain_min = domain_min_;
+    s.domain_max = domain_max_;
 }
 
 void Simulation::load_passes(const Node& n) {

@@ -90,6 +90,7 @@ private:
     SnapshotOptions png_;
     void write_png_snapshot();
     RunSummary run_;
+    json metrics_;  // evaluated `metrics` of the scene (metrics.cpp)
     std::string timestep_note_;
     std::chrono::steady_clock::time_point started_;
 
@@ -99,6 +100,7 @@ private:
     void load_walls(const Node& n);
     void load_contact_models(const Node& n);
     void load_passes(const Node& n);
+    void load_stability(const Node& n);
     void load_timestep(const Node& n);
     void load_histories(const Node& n);
     void load_output(const Node& n);

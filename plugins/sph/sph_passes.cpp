@@ -26,6 +26,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -56,7 +58,9 @@ struct SphEos {
         "hydrostatic_gravity > 0.";
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 10;  // after sph_density_integration
-    enum Prop : int { rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, prop_count };
+    enum Prop : int {
+        rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, density_band, prop_count
+    };
     static constexpr plab_property_desc properties[] = {
         rest_density_desc, speed_of_sound_desc, gamma_desc,
         boundary_group_desc,
@@ -64,6 +68,9 @@ struct SphEos {
          PLAB_MAX_EXCLUSIVE, "g of the initial profile; 0: uniform rho0"},
         {"surface_level", "free-surface height H of the initial profile", "m", 0.0, -inf, inf,
          PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "vertical coordinate (y in 2D, z in 3D) of the free surface"},
+        {"density_band", "largest |rho/rho0 - 1| of a fluid ball", "1", 0.05, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "the run stops (last good state kept) when a fluid density leaves rho0 (1 +- band); the density error grows "
+         "as (v/c0)^2 and g H/c0^2: 0.05 passes c0 = 5 x the largest speed and stops 3 x (docs/stability.md)"},
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
     enum Field : int { density, pressure };
@@ -71,16 +78,44 @@ struct SphEos {
 
     explicit SphEos(const double* p)
         : rho0_(p[rest_density]), gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
-          boundary_(int(p[boundary_group])), g_(p[hydrostatic_gravity]), surface_(p[surface_level]) {}
+          boundary_(int(p[boundary_group])), g_(p[hydrostatic_gravity]), surface_(p[surface_level]),
+          c0_(p[speed_of_sound]), band_(p[density_band]) {}
 
     void run(const plab_pass_view& v) {
         if (!initialised_) initialise(v);
         double* rho = v.fields[density];
         double* p = v.fields[pressure];
-        for (uint32_t i = 0; i < v.body_count; ++i) p[i] = b_ * (std::pow(rho[i] / rho0_, gamma_) - 1.0);
+        uint32_t worst = v.body_count;
+        double worst_dev = band_;
+        for (uint32_t i = 0; i < v.body_count; ++i) {
+            p[i] = b_ * (std::pow(rho[i] / rho0_, gamma_) - 1.0);
+            const double dev = std::fabs(rho[i] / rho0_ - 1.0);
+            if (!(dev <= worst_dev) && v.group[i] != boundary_) { worst = i; worst_dev = dev; }  // NaN too
+        }
+        if (worst < v.body_count) throw plab::UnstableState{band_message(v, worst)};
     }
 
 private:
+    // Names the ball, the density against the band and the likely cause:
+    // a speed of sound too low for the flow (the Mach number sets the
+    // density error) or a step above the CFL limit.
+    std::string band_message(const plab_pass_view& v, uint32_t i) const {
+        double v_max = 0;
+        for (uint32_t j = 0; j < v.body_count; ++j) {
+            const double* u = v.velocity + 3 * j;
+            v_max = std::max(v_max, std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+        }
+        char buf[480];
+        std::snprintf(buf, sizeof buf,
+                      "sph_density: ball index %u has density %.6g kg/m3 = %.4g rho0, outside rho0 (1 +- %.3g) "
+                      "(sph_eos density_band); likely cause: speed of sound c0 = %.4g m/s too low (the density error "
+                      "grows as (v/c0)^2 and g H/c0^2; now c0 = %.3g x the largest speed %.4g m/s; use c0 >= 10 x the "
+                      "largest speed expected), or a timestep above the CFL limit",
+                      i, v.fields[density][i], v.fields[density][i] / rho0_, band_, c0_, v_max > 0 ? c0_ / v_max : inf,
+                      v_max);
+        return buf;
+    }
+
     // Inverse of eq. 80 for p = ρ0 g (H - y): the particles start in
     // hydrostatic balance instead of ringing from a uniform density.
     void initialise(const plab_pass_view& v) {
@@ -97,7 +132,7 @@ private:
 
     double rho0_, gamma_, b_;
     int boundary_;
-    double g_, surface_;
+    double g_, surface_, c0_, band_;
     bool initialised_ = false;
 };
 

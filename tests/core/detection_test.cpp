@@ -121,7 +121,7 @@ TEST_CASE("the coordination-number pass counts the contacts of each ball", "[det
 TEST_CASE("a contact model reads body fields and accumulates into them through its batch", "[detection][fields]") {
     json scene = pile(2);
     scene["plugins"].push_back(std::string(PLAB_TEST_PLUGIN_DIR) + "/field_probe.so");
-    scene["contact_models"] = {{{"groups", {"*", "*"}}, {"model", "field_probe"}, {"properties", {{"k", 1e4}}}}};
+    scene["contact_models"] = {{{"groups", {"*", "*"}}, {"model", "field_probe"}, {"properties", {{"k", 1e5}}}}};
     Simulation sim(scene);
     sim.set_quiet(true);
     World& w = sim.world();

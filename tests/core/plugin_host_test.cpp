@@ -47,7 +47,7 @@ TEST_CASE("a library built for another ABI version is refused, naming the file a
     const std::string msg = refusal(host, "wrong_abi");
     CHECK_THAT(msg, Contains("wrong_abi.so"));
     CHECK_THAT(msg, Contains("ABI version 99"));
-    CHECK_THAT(msg, Contains("speaks version 1"));
+    CHECK_THAT(msg, Contains("speaks versions 1 to " + std::to_string(PLAB_ABI_VERSION)));
     CHECK_THAT(msg, Contains("rebuild"));
 }
 
@@ -87,7 +87,7 @@ TEST_CASE("a model returning NaN stops the run with a diagnostic naming the ball
     scene["bodies"][0]["velocity"] = {1.0, 0.0};
     Simulation sim(scene);
     sim.set_quiet(true);
-    CHECK_THROWS_WITH(sim.cycle(20000), Contains("non-finite state of ball id") && Contains("at step") &&
+    CHECK_THROWS_WITH(sim.cycle(20000), Contains("non-finite state") && Contains("ball id") && Contains("at step") &&
                                            Contains("contact model 'nan_model' returned a non-finite force") &&
                                            Contains("ball id 0 and ball id 1") && Contains("check its law") &&
                                            Contains("back at its last good state"));

@@ -4,9 +4,18 @@
  * freed on the other side of the boundary.
  *
  * A library exports two symbols:
- *   uint32_t plab_plugin_abi_version(void);        -- must equal PLAB_ABI_VERSION
+ *   uint32_t plab_plugin_abi_version(void);        -- PLAB_ABI_VERSION it was built with
  *   int      plab_plugin_init(const plab_registrar*);  -- registers its models/passes
- * The host checks the version before calling init and refuses a mismatch.
+ * The host checks the version before calling init and refuses a version
+ * outside [PLAB_ABI_OLDEST, PLAB_ABI_VERSION].
+ *
+ * Versions (each one only appends to structs the host fills, so a host
+ * still runs every older plug-in; an older host refuses a newer plug-in):
+ *   1  the first.
+ *   2  plab_pass_view gains `diagnostic` / `diagnostic_capacity` and a pass
+ *      may return PLAB_PASS_UNSTABLE: the state it checks is unphysical
+ *      (e.g. SPH density far from rho0). The host stops the run with the
+ *      pass's message and keeps the last good state.
  *
  * Contact models are called once per *batch* of contacts over host-owned
  * structure-of-arrays data (plab_contact_batch). Passes are called once per
@@ -25,7 +34,8 @@
 extern "C" {
 #endif
 
-#define PLAB_ABI_VERSION 1u
+#define PLAB_ABI_VERSION 2u
+#define PLAB_ABI_OLDEST 1u /* oldest plug-in ABI this host still loads */
 
 /* ---- descriptions ------------------------------------------------------ */
 
@@ -198,7 +208,18 @@ typedef struct plab_pass_view {
     const int32_t* contact_end1;
     const int32_t* contact_end2;
     const uint8_t* contact_end2_is_wall;
+    /* since ABI 2: a pass that returns PLAB_PASS_UNSTABLE writes one line
+     * here, "QUANTITY: which body, the value against its bound; likely
+     * cause: ..." (NUL-terminated, at most diagnostic_capacity bytes
+     * including the NUL). Older passes never touch it. */
+    char* diagnostic;
+    uint32_t diagnostic_capacity;
 } plab_pass_view;
+
+/* Return codes of plab_pass_desc.run: 0 success; PLAB_PASS_UNSTABLE the
+ * state is unphysical (since ABI 2; see plab_pass_view.diagnostic); any
+ * other non-zero value a failure of the pass itself. */
+#define PLAB_PASS_UNSTABLE 3
 
 typedef struct plab_pass_desc {
     const char* name;

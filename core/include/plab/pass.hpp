@@ -12,12 +12,27 @@
 //       void run(const plab_pass_view& v);
 //   };
 //   PLAB_PLUGIN(plab::add_pass<MyPass>(r))
+//
+// A pass that checks a physical bound (SPH density near rho0) throws
+// plab::UnstableState from run(): the host stops the run with its message
+// and keeps the last good state (ABI 2, PLAB_PASS_UNSTABLE).
 #ifndef PLAB_PASS_HPP
 #define PLAB_PASS_HPP
 
 #include <plab/contact_model.hpp>
 
+#include <algorithm>
+#include <cstring>
+#include <string>
+
 namespace plab {
+
+// The state a pass checks is unphysical. The message names the quantity,
+// the body, the value against its bound and a likely cause; it stays inside
+// the plug-in (copied into the view's diagnostic buffer, never thrown across).
+struct UnstableState {
+    std::string message;
+};
 
 namespace detail {
 template <class P, class = void> struct has_properties : std::false_type {};
@@ -25,7 +40,18 @@ template <class P> struct has_properties<P, std::void_t<decltype(P::properties)>
 
 template <class P> int run_pass(void* state, const double*, const plab_pass_view* v) noexcept {
     if (!state) return 1;
-    try { static_cast<P*>(state)->run(*v); } catch (...) { return 2; }
+    try {
+        static_cast<P*>(state)->run(*v);
+    } catch (const UnstableState& u) {
+        if (v->diagnostic && v->diagnostic_capacity > 0) {
+            const std::size_t n = std::min<std::size_t>(u.message.size(), v->diagnostic_capacity - 1);
+            std::memcpy(v->diagnostic, u.message.data(), n);
+            v->diagnostic[n] = '\0';
+        }
+        return PLAB_PASS_UNSTABLE;
+    } catch (...) {
+        return 2;
+    }
     return 0;
 }
 } // namespace detail

@@ -26,9 +26,16 @@ public:
 };
 
 // A run stopped by the stability detector; the world keeps its last good state.
+// `quantity` names what went out of bounds ("overlap", "energy gain", ...),
+// empty for other run failures.
 class RunError : public std::runtime_error {
 public:
-    using std::runtime_error::runtime_error;
+    explicit RunError(const std::string& message, std::string quantity = "")
+        : std::runtime_error(message), quantity_(std::move(quantity)) {}
+    const std::string& quantity() const { return quantity_; }
+
+private:
+    std::string quantity_;
 };
 
 } // namespace plab

@@ -24,7 +24,9 @@ void World::geometry(ModelInstance& inst, ContactSet& s) {
     const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
     const int persist = inst.desc->persist_slot;
     const auto& B = bodies;
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    const double overlap_limit = inst.max_overlap;  // the stability detector's, checked here while the gap is at hand
+    bool exceeded = false;
+#pragma omp parallel for schedule(static) reduction(| : exceeded) if (n >= parallel_min)
     for (std::size_t k = 0; k < n; ++k) {
         const std::int32_t i = s.end1[k];
         const Vec& xi = B.position[i];
@@ -89,7 +91,9 @@ void World::geometry(ModelInstance& inst, ContactSet& s) {
         s.active[k] = by_distance ? dist <= inst.range : gap <= inst.range;
         if (inst.desc->persist_slot >= 0 && s.history[k * inst.stride + inst.desc->persist_slot] > 0)
             s.active[k] = 1;  // a bond holds at any gap
+        exceeded |= s.active[k] && -gap > overlap_limit * (rj > 0 ? std::min(ri, rj) : ri);
     }
+    s.overlap_exceeded = exceeded;
 }
 
 // A ball touching a wall along several facets. An edge/vertex contact is
@@ -374,27 +378,67 @@ void World::rates_stage() {
     run_passes(PLAB_PHASE_RATES_DONE);
 }
 
+// PFC's per-ball estimate; the reason names the model and group that set
+// it, so a diagnostic can say "2.1x the stable limit of model linear for
+// group grains". Strings are built once, for the winner only.
 StableStep World::stable_timestep() {
     if (!nominal_valid_) { nominal_cache_ = nominal_timestep(); nominal_valid_ = true; }
     StableStep best = nominal_cache_;
+    std::size_t ball = bodies.size();
+    bool rotation = false;
     // per-ball stiffness sums exist once forces were computed (prepare())
     const std::size_t summed = std::min(bodies.size(), k_trans_.size());
     for (std::size_t i = 0; i < summed; ++i) {
         if (k_trans_[i] > 0) {
             const double dt = std::sqrt(bodies.mass[i] / k_trans_[i]);
-            if (dt < best.critical) best = {dt, "translation of ball id " + std::to_string(bodies.id[i]) + " (sqrt(m/sum k))"};
+            if (dt < best.critical) { best.critical = dt; ball = i; rotation = false; }
         }
         if (k_rot_[i] > 0) {
             const double dt = std::sqrt(bodies.inertia[i] / k_rot_[i]);
-            if (dt < best.critical) best = {dt, "rotation of ball id " + std::to_string(bodies.id[i]) + " (sqrt(I/sum k_r))"};
+            if (dt < best.critical) { best.critical = dt; ball = i; rotation = true; }
         }
     }
+    const ModelInstance* limit_model = nullptr;
+    const ContactSet* limit_set = nullptr;
+    std::size_t limit_row = 0;
     for (auto& inst : instances_)
         for (const ContactSet* s : {&inst->balls, &inst->walls})
             for (std::size_t k = 0; k < s->size(); ++k)
-                if (s->active[k] && s->dt_limit[k] < best.critical)
-                    best = {s->dt_limit[k], "step limit of model " + inst->model};
+                if (s->active[k] && s->dt_limit[k] < best.critical) {
+                    best.critical = s->dt_limit[k];
+                    limit_model = inst.get(); limit_set = s; limit_row = k;
+                    ball = bodies.size();
+                }
+    if (limit_model) {
+        best.limited_by = "model " + limit_model->model + " for groups " + contact_groups(*limit_set, limit_row) +
+                          ": its step limit";
+    } else if (ball < bodies.size()) {
+        best.limited_by = "model " + stiffest_model(ball) + " for group " + groups_[bodies.group[ball]] + ": " +
+                          (rotation ? "rotation" : "translation") + " of ball id " + std::to_string(bodies.id[ball]) +
+                          (rotation ? " (sqrt(I/sum k_r))" : " (sqrt(m/sum k))");
+    }
     return best;
+}
+
+// "grains-walls": the groups of a contact's two ends.
+std::string World::contact_groups(const ContactSet& s, std::size_t k) const {
+    const int g2 = s.with_wall ? walls.walls[walls.facets[s.end2[k]].wall].group : bodies.group[s.end2[k]];
+    return groups_[bodies.group[s.end1[k]]] + "-" + groups_[g2];
+}
+
+// The model that gives ball i most of its stiffness.
+std::string World::stiffest_model(std::size_t i) const {
+    constexpr std::uint32_t end2_bit = 1u << 31;
+    std::vector<double> k_of(instances_.size(), 0.0);
+    for (std::uint32_t e = entry_start_.empty() ? 0 : entry_start_[i]; !entry_start_.empty() && e < entry_start_[i + 1]; ++e) {
+        const ContactSet& s = *sets_[entries_[e].set];
+        const std::uint32_t k = entries_[e].row & ~end2_bit;
+        if (!s.active[k]) continue;
+        for (std::size_t m = 0; m < instances_.size(); ++m)
+            if (set_owner_[entries_[e].set] == instances_[m].get()) k_of[m] += s.k_t[k];
+    }
+    const auto top = std::max_element(k_of.begin(), k_of.end());
+    return top == k_of.end() || *top <= 0 ? std::string("(none)") : instances_[std::size_t(top - k_of.begin())]->model;
 }
 
 } // namespace plab

@@ -181,9 +181,10 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
             throw PluginError("plug-in library " + path + " has no entry point '" + sym +
                               "'; define it with PLAB_PLUGIN(...) from <plab/contact_model.hpp>");
     const uint32_t version = lib->get<uint32_t()>("plab_plugin_abi_version")();
-    if (version != PLAB_ABI_VERSION)
+    if (version < PLAB_ABI_OLDEST || version > PLAB_ABI_VERSION)
         throw PluginError("plug-in library " + path + " was built for plug-in ABI version " + std::to_string(version) +
-                          " but this plab speaks version " + std::to_string(PLAB_ABI_VERSION) +
+                          " but this plab speaks versions " + std::to_string(PLAB_ABI_OLDEST) + " to " +
+                          std::to_string(PLAB_ABI_VERSION) +
                           "; rebuild it against this ParticleLab's headers");
     LoadedLibrary entry;
     entry.path = path;

@@ -96,7 +96,10 @@ StableStep World::nominal_timestep() {
                 if (lightest[other].any) s = probe_contact(*instances_[inst], dim, lightest[ball_g], lightest[other], false);
                 else if (wall_group[other]) s = probe_contact(*instances_[inst], dim, lightest[ball_g], Probe{}, true);
                 else continue;
-                if (s.critical < best.critical) best = s;
+                if (s.critical < best.critical) {
+                    best = s;
+                    best.limited_by.insert(best.limited_by.find(':'), " for groups " + groups_[ball_g] + "-" + groups_[other]);
+                }
             }
         }
     return best;

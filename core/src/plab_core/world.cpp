@@ -12,7 +12,8 @@
 namespace plab {
 
 const char* const phase_names[ph_count] = {"timestep", "law_of_motion", "contact_detection", "pre_force_passes",
-                                           "force_displacement", "reduction", "post_force_passes", "integration"};
+                                           "force_displacement", "reduction", "post_force_passes", "integration",
+                                           "stability_checks"};
 
 namespace {
 struct PhaseTimer {
@@ -64,6 +65,9 @@ int World::add_instance(const std::string& model, std::vector<double> props) {
     if (!std::isfinite(inst->range))
         throw PluginError("contact model '" + model + "' reports a non-finite activity range");
     inst->stride = int(d->history_count);
+    // overlap means something for mechanical contacts only (SPH pairs are
+    // "in contact" at a distance)
+    inst->max_overlap = d->range_kind == PLAB_RANGE_GAP ? 1.0 : kInf;
     for (uint32_t f = 0; f < d->fields_read_count; ++f)
         inst->fields_read.push_back(register_field(d->fields_read[f].name, d->fields_read[f].default_value));
     for (uint32_t f = 0; f < d->fields_accumulated_count; ++f)
@@ -144,7 +148,12 @@ void World::run_passes(std::uint32_t phase) {
         v.contact_end1 = pc_end1_.data();
         v.contact_end2 = pc_end2_.data();
         v.contact_end2_is_wall = pc_wall_.data();
-        if (p.desc->run(p.state, p.props.data(), &v) != 0)
+        char diagnostic[512] = "";
+        v.diagnostic = diagnostic;
+        v.diagnostic_capacity = sizeof diagnostic;
+        const int rc = p.desc->run(p.state, p.props.data(), &v);
+        if (rc == PLAB_PASS_UNSTABLE) stop(pass_diagnostic(p.desc->name, diagnostic));
+        if (rc != 0)
             throw RunError(std::string("pass '") + p.desc->name + "' failed at step " + std::to_string(step_count));
     }
 }
@@ -173,6 +182,8 @@ void World::prepare() {
     sum_energies(0.0);  // states (kinetic, strain) at this instant; no flow
     last_dt = dt;
     prepared_ = true;
+    set_stability_baseline();
+    stopped = Diagnostic{};  // a run that goes on after a stop is running again
 }
 
 // Kick–drift–kick form of the leapfrog (thesis eqs. 32–36): the same
@@ -189,7 +200,8 @@ void World::step() {
         restore_snapshot();
         throw RunError(std::string(e.what()) + "; the world is back at its last good state, step " +
                        std::to_string(step_count) + " (t = " + std::to_string(time) + " s), " +
-                       std::to_string(failed_at - step_count) + " steps before the failure");
+                       std::to_string(failed_at - step_count) + " steps before the failure",
+                       e.quantity());
     }
 }
 
@@ -204,6 +216,7 @@ void World::take_snapshot() {
     s.last_dt = last_dt;
     s.step_count = step_count;
     s.bond_breaks = bond_breaks.size();
+    snapshot_stable_ = stable_timestep();
     s.sets.clear();
     for (const auto& inst : instances_)
         for (const ContactSet* c : {&inst->balls, &inst->walls})
@@ -266,6 +279,10 @@ void World::advance() {
         PhaseTimer t{phase_seconds[ph_integrate]};
         run_passes(PLAB_PHASE_INTEGRATE);
     }
+    {
+        PhaseTimer t{phase_seconds[ph_stability]};
+        detect_instability();
+    }
 }
 
 void World::force_pass() {
@@ -314,12 +331,19 @@ void World::kick(double h) {
 void World::drift(double dt) {
     const std::size_t n = bodies.size();
     double body_work = 0;
+    const Vec lo = baseline_.lo, hi = baseline_.hi;
+    bool out = false;
     for (std::size_t i = 0; i < n; ++i) {
         const Vec dx = bodies.velocity[i] * dt;
-        bodies.position[i] += dx;
+        Vec& x = bodies.position[i];
+        x += dx;
         body_work += bodies.mass[i] * gravity.dot(dx);  // exact for a constant force
+        // the detector's domain check, while x is at hand (a NaN fails every comparison)
+        out |= !(x.x() >= lo.x() && x.x() <= hi.x() && x.y() >= lo.y() && x.y() <= hi.y() && x.z() >= lo.z() &&
+                 x.z() <= hi.z() && std::fabs(x.x() + x.y() + x.z()) < kInf);
     }
     energies.body += body_work;
+    left_domain_ = out;
 }
 
 // For a plug-in author: the model and contact whose output went non-finite.
@@ -341,18 +365,21 @@ std::string World::non_finite_contact(std::size_t body) const {
     return "";
 }
 
-void World::check_finite() const {
+void World::check_finite() {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         if (bodies.position[i].allFinite() && bodies.force[i].allFinite() && bodies.moment[i].allFinite() &&
             bodies.velocity[i].allFinite())
             continue;
         std::ostringstream s;
-        s << "non-finite state of ball id " << bodies.id[i] << " at step " << step_count << " (t = " << time
-          << " s): position " << bodies.position[i].transpose() << ", force " << bodies.force[i].transpose();
+        s << "position " << bodies.position[i].transpose() << ", force " << bodies.force[i].transpose();
+        Diagnostic d;
+        d.quantity = "non-finite state";
+        d.subject = "ball id " + std::to_string(bodies.id[i]) + " (group " + groups_[bodies.group[i]] + ")";
+        d.detail = s.str();
+        // for a plug-in author: the model and contact whose output went non-finite
         const std::string culprit = non_finite_contact(i);
-        if (!culprit.empty()) s << "; " << culprit;
-        else s << "; likely cause: timestep " << last_dt << " s above the stable limit, or a contact model returned NaN";
-        throw RunError(s.str());
+        d.cause = culprit.empty() ? "a contact model returned NaN or Inf (or a pass did), or the state overflowed" : culprit;
+        stop(d);
     }
 }
 

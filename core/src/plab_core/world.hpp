@@ -7,6 +7,7 @@
 
 #include "bodies.hpp"
 #include "plugin_host.hpp"
+#include "stability.hpp"
 #include "types.hpp"
 #include "walls.hpp"
 
@@ -32,6 +33,7 @@ struct ContactSet {
     // outputs
     std::vector<double> force, moment1, moment2, strain, slip, dashpot, k_t, k_r, dt_limit, break_energy;
     std::vector<std::vector<double>> acc1, acc2;
+    bool overlap_exceeded = false;  // an active contact overlaps beyond its model's max_overlap (geometry())
 
     std::size_t size() const { return end1.size(); }
     void resize_columns(std::size_t n, int n_accumulated);
@@ -44,6 +46,7 @@ struct ModelInstance {
     void* state = nullptr;
     double range = 0;  // activity range (gap or distance, see desc->range_kind)
     int stride = 0;    // history doubles per contact
+    double max_overlap = kInf;  // stability: overlap limit, fraction of the smaller radius (1)
     std::vector<int> fields_read, fields_accumulated;  // world field indices
     ContactSet balls, walls;
 };
@@ -79,7 +82,7 @@ struct BondBreak {
     std::string model;
 };
 
-enum Phase { ph_timestep, ph_motion, ph_detection, ph_pre_force, ph_force, ph_reduction, ph_post_force, ph_integrate, ph_count };
+enum Phase { ph_timestep, ph_motion, ph_detection, ph_pre_force, ph_force, ph_reduction, ph_post_force, ph_integrate, ph_stability, ph_count };
 extern const char* const phase_names[ph_count];
 
 struct StableStep {
@@ -152,6 +155,10 @@ public:
     // leaves step(), so outputs and the caller see the last good state.
     std::uint64_t snapshot_interval = 100;
 
+    // ---- the instability detector (stability.cpp) ----
+    StabilityLimits stability;
+    Diagnostic stopped;  // what stopped the last step (quantity empty: nothing)
+
     // ---- measurements ----
     Energies energies;
     // Per-ball average stress (tension positive), PFC's measurement:
@@ -216,6 +223,25 @@ private:
         std::size_t bond_breaks = 0;
         std::vector<SetState> sets;  // per instance: balls, walls
     } snapshot_;
+    StableStep snapshot_stable_;  // stable step at the last good state, for the likely cause
+    // the energy balance and domain the detector compares with (stability.cpp)
+    struct StabilityBaseline {
+        double balance = 0, body = 0, boundary = 0, dissipated = 0, stored = 0, potential = 0, max_work = 0;
+        Vec lo = Vec::Constant(-kInf), hi = Vec::Constant(kInf);
+    } baseline_;
+    bool left_domain_ = false;  // a position left the domain or is not finite (drift())
+    void set_stability_baseline();
+    void detect_instability();
+    void check_domain_and_finite();
+    void check_energy();
+    void check_overlaps();
+    void overlap_stop(const ModelInstance& inst, const ContactSet& s);
+    std::string contact_name(const ModelInstance& inst, const ContactSet& s, std::size_t k) const;
+    std::string timestep_assessment() const;
+    std::string contact_groups(const ContactSet& s, std::size_t k) const;
+    std::string stiffest_model(std::size_t ball) const;
+    [[noreturn]] void stop(Diagnostic d);
+    Diagnostic pass_diagnostic(const std::string& pass, const std::string& message) const;
     void take_snapshot();
     void restore_snapshot();
     void advance();
@@ -242,7 +268,7 @@ private:
     void run_passes(std::uint32_t phase);
     void kick(double half_dt);
     void drift(double dt);
-    void check_finite() const;
+    void check_finite();
     std::string non_finite_contact(std::size_t body) const;
     void sum_energies(double dt);
 };

@@ -1,0 +1,236 @@
+// The instability detector (DESIGN.md "Errors"; issue 7), run at the end of
+// every cycle. A separate pass over bodies or contacts streams memory the
+// cycle has already streamed (measured 3 % of a settled granular step at
+// N = 1e4), so the bounds are compared where the data is at hand and only
+// flags are read here (measured < 0.5 %, docs/stability.md):
+//   * non-finite positions and particles leaving the domain — in drift();
+//   * energy appearing from nowhere — the energy balance the cycle already
+//     keeps (Energies::balance), O(1);
+//   * overlap beyond a fraction of the smaller radius — in geometry().
+// Passes report what only they know (SPH density) through the pass view's
+// diagnostic (abi.h, ABI 2; World::run_passes). When a check fires, the run
+// stops with a Diagnostic; World::step() restores the last good state.
+#include "world.hpp"
+
+#include "error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace plab {
+
+namespace {
+std::string fmt(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+} // namespace
+
+// After every change of the scene (and at the start) the balance, the energy
+// turned over so far and the domain are measured afresh: a `set velocity`
+// adds kinetic energy that no force did work for, and is not an instability.
+void World::set_stability_baseline() {
+    StabilityBaseline& b = baseline_;
+    const Energies& e = energies;
+    b.balance = e.balance();
+    b.body = e.body;
+    b.boundary = e.boundary;
+    b.dissipated = e.slip + e.dashpot + e.local_damping + e.bond_break;
+    b.stored = e.kinetic + e.strain;
+    b.max_work = 0;
+    // potential energy the particles hold over their own extent along g
+    b.potential = 0;
+    const double g = gravity.norm();
+    if (g > 0 && bodies.size()) {
+        const Vec up = -gravity / g;
+        double lo = kInf, hi = -kInf, mass = 0;
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+            lo = std::min(lo, up.dot(bodies.position[i]) - bodies.radius[i]);
+            hi = std::max(hi, up.dot(bodies.position[i]) + bodies.radius[i]);
+            mass += bodies.mass[i];
+        }
+        b.potential = mass * g * (hi - lo);
+    }
+    // the domain: the scene's, else the walls' bounding box (with the
+    // bodies, which may start outside it) grown by the margin
+    b.lo = stability.domain_min;
+    b.hi = stability.domain_max;
+    if (b.lo.array().isInf().all() && b.hi.array().isInf().all()) {
+        Vec lo = Vec::Constant(kInf), hi = Vec::Constant(-kInf);
+        bool any = false;
+        for (const Facet& f : walls.facets) {
+            if (f.kind == FacetKind::plane) continue;  // unbounded
+            for (const Vec* p : {&f.a, &f.b, &f.c}) {
+                if (f.kind == FacetKind::segment && p == &f.c) continue;
+                lo = lo.cwiseMin(*p);
+                hi = hi.cwiseMax(*p);
+            }
+            any = true;
+        }
+        if (any) {
+            for (std::size_t i = 0; i < bodies.size(); ++i) {
+                lo = lo.cwiseMin(bodies.position[i] - Vec::Constant(bodies.radius[i]));
+                hi = hi.cwiseMax(bodies.position[i] + Vec::Constant(bodies.radius[i]));
+            }
+            const double margin = stability.domain_margin * (hi - lo).head(dim).maxCoeff();
+            b.lo = lo - Vec::Constant(margin);
+            b.hi = hi + Vec::Constant(margin);
+        }
+    }
+    if (dim == 2) { b.lo.z() = -kInf; b.hi.z() = kInf; }
+}
+
+void World::detect_instability() {
+    if (!stability.enabled) return;
+    check_domain_and_finite();
+    check_energy();
+    check_overlaps();
+}
+
+// drift() flags a position outside the domain or not finite while it moves
+// the balls (a second pass over positions would cost more than the check);
+// the slow path here names the ball.
+void World::check_domain_and_finite() {
+    if (!left_domain_) return;
+    const StabilityBaseline& b = baseline_;
+    const std::size_t n = bodies.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec& p = bodies.position[i];
+        const bool finite = p.allFinite();
+        if (finite && (p.array() >= b.lo.array()).all() && (p.array() <= b.hi.array()).all()) continue;
+        Diagnostic d;
+        d.subject = "ball id " + std::to_string(bodies.id[i]) + " (group " + groups_[bodies.group[i]] + ")";
+        std::ostringstream s;
+        s << "position " << p.head(dim).transpose() << ", velocity " << bodies.velocity[i].head(dim).transpose();
+        if (!finite) {
+            d.quantity = "non-finite state";
+            d.detail = s.str();
+            d.cause = "a contact model or pass returned NaN/Inf, or the state overflowed";
+        } else {
+            d.quantity = "domain";
+            s << " outside [" << b.lo.head(dim).transpose() << "] .. [" << b.hi.head(dim).transpose() << "]";
+            d.detail = s.str();
+            d.cause = "a particle went through a wall (the wall contact is too soft or the particle too fast), or the "
+                      "domain is too small (scene.domain, scene.stability.domain_margin)";
+        }
+        stop(d);
+    }
+}
+
+// Energy from nowhere: the balance (kinetic + strain - work + dissipated)
+// may only stay or fall (a model that does not report what it dissipates,
+// e.g. SPH viscosity, makes it fall); a rise beyond `energy_gain` times the
+// energy turned over is an instability.
+void World::check_energy() {
+    if (!(stability.energy_gain < kInf)) return;
+    StabilityBaseline& b = baseline_;
+    const Energies& e = energies;
+    const double work = std::fabs(e.body - b.body) + std::fabs(e.boundary - b.boundary);
+    b.max_work = std::max(b.max_work, work);
+    const double dissipated = e.slip + e.dashpot + e.local_damping + e.bond_break - b.dissipated;
+    const double turnover = b.stored + b.max_work + std::max(dissipated, 0.0) + 0.01 * b.potential;
+    const double gain = e.balance() - b.balance;
+    if (!(gain > 0) || gain <= stability.energy_gain * turnover) return;
+    std::size_t top = 0;
+    double top_kinetic = -1;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const double k = 0.5 * bodies.mass[i] * bodies.velocity[i].squaredNorm() +
+                         0.5 * bodies.inertia[i] * bodies.angular_velocity[i].squaredNorm();
+        if (k > top_kinetic) { top_kinetic = k; top = i; }
+    }
+    Diagnostic d;
+    d.quantity = "energy gain";
+    d.subject = bodies.size() ? "largest kinetic energy " + fmt(top_kinetic) + " J on ball id " +
+                                    std::to_string(bodies.id[top]) + " (group " + groups_[bodies.group[top]] + ")"
+                              : "no bodies";
+    d.detail = "the energy balance rose by " + fmt(gain) + " J with no work to account for it, more than " +
+               fmt(stability.energy_gain) + " x the " + fmt(turnover) + " J turned over (scene.stability.energy_gain)";
+    d.cause = "a timestep close to the stable limit (lower timestep.safety_factor or timestep.fixed), or a plug-in "
+              "that adds energy";
+    stop(d);
+}
+
+// geometry() flags a contact set with an overlap beyond its model's limit
+// while it computes the gaps; the slow path names the contact.
+void World::check_overlaps() {
+    for (auto& inst : instances_)
+        for (const ContactSet* s : {&inst->balls, &inst->walls})
+            if (s->overlap_exceeded) overlap_stop(*inst, *s);
+}
+
+void World::overlap_stop(const ModelInstance& inst, const ContactSet& s) {
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        const double r = s.with_wall ? s.radius1[k] : std::min(s.radius1[k], s.radius2[k]);
+        if (!s.active[k] || -s.gap[k] <= inst.max_overlap * r) continue;
+        Diagnostic d;
+        d.quantity = "overlap";
+        d.subject = contact_name(inst, s, k);
+        d.detail = "overlap " + fmt(-s.gap[k]) + " m is " + fmt(-s.gap[k] / r) + " x the smaller radius " + fmt(r) +
+                   " m, above the limit " + fmt(inst.max_overlap) + " (contact_models[].max_overlap)";
+        d.cause = "the contact is too soft for the load or the impact speed (the overlap of an impact grows as "
+                  "v sqrt(m/k)): raise the stiffness or lower the speed";
+        stop(d);
+    }
+}
+
+std::string World::contact_name(const ModelInstance& inst, const ContactSet& s, std::size_t k) const {
+    const int i = s.end1[k];
+    std::string name = "contact of ball id " + std::to_string(bodies.id[i]) + " (group " + groups_[bodies.group[i]] + ") and ";
+    if (s.with_wall) {
+        const Wall& w = walls.walls[walls.facets[s.end2[k]].wall];
+        name += "wall '" + w.name + "' (group " + groups_[w.group] + ")";
+    } else {
+        const int j = s.end2[k];
+        name += "ball id " + std::to_string(bodies.id[j]) + " (group " + groups_[bodies.group[j]] + ")";
+    }
+    return name + ", model " + inst.model;
+}
+
+// The first suspect of any instability: a step above the stable limit the
+// models reported at the last good state.
+std::string World::timestep_assessment() const {
+    const StableStep& s = snapshot_stable_;
+    if (!(s.critical < kInf) || !(last_dt > 0)) return "";
+    const double ratio = last_dt / s.critical;
+    if (ratio <= 1.0) return "";
+    return "timestep " + fmt(last_dt) + " s is " + fmt(ratio) + "x the stable limit " + fmt(s.critical) + " s of " +
+           s.limited_by + " (lower timestep.fixed, or use the automatic step)";
+}
+
+void World::stop(Diagnostic d) {
+    d.step = step_count;
+    d.time = time;
+    const std::string dt = timestep_assessment();
+    if (!dt.empty()) d.cause = dt + "; else " + d.cause;
+    stopped = d;
+    throw RunError(d.message(), d.quantity);
+}
+
+} // namespace plab
+
+namespace plab {
+
+// A pass's message reads "QUANTITY: what, where, value against bound;
+// likely cause: ..." (abi.h); the parts go where the host's own go.
+Diagnostic World::pass_diagnostic(const std::string& pass, const std::string& message) const {
+    Diagnostic d;
+    const std::size_t colon = message.find(": ");
+    d.quantity = colon == std::string::npos ? pass : message.substr(0, colon);
+    std::string rest = colon == std::string::npos ? message : message.substr(colon + 2);
+    const std::string marker = "; likely cause: ";
+    const std::size_t cause = rest.find(marker);
+    if (cause != std::string::npos) {
+        d.cause = rest.substr(cause + marker.size());
+        rest = rest.substr(0, cause);
+    } else {
+        d.cause = "see the pass " + pass;
+    }
+    d.subject = "pass " + pass;
+    d.detail = rest.empty() ? "(no message)" : rest;
+    return d;
+}
+
+} // namespace plab

@@ -1,0 +1,321 @@
+// Stability at the extremes (issue 7): each model run at the edges of its
+// parameters must either stay physical (bounded energy balance) or stop with
+// the detector's diagnostic naming the quantity and the cause — never write
+// garbage. Short runs; the table of outcomes is in docs/stability.md.
+#include "simulation.hpp"
+
+#include <cases/sph_cases.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+
+using namespace plab;
+using Catch::Matchers::Contains;
+
+namespace {
+
+struct Outcome {
+    bool stopped = false;
+    std::string quantity, message;
+    double balance_error = 0;  // |balance drift| / energy turned over, for runs that finish
+};
+
+// Runs `cycles` steps; the energy scale is the initial kinetic + strain
+// energy plus the largest |work| done by gravity and boundaries.
+Outcome run(Simulation& sim, long cycles) {
+    World& w = sim.world();
+    w.prepare();
+    const double e0 = w.energies.balance();
+    double scale = w.energies.kinetic + w.energies.strain, b0 = w.energies.body, w0 = w.energies.boundary;
+    Outcome out;
+    try {
+        for (long k = 0; k < cycles; ++k) {
+            w.step();
+            scale = std::max(scale, std::fabs(w.energies.body - b0) + std::fabs(w.energies.boundary - w0) +
+                                        w.energies.kinetic + w.energies.strain);
+        }
+    } catch (const RunError& e) {
+        out.stopped = true;
+        out.quantity = e.quantity();
+        out.message = e.what();
+    }
+    out.balance_error = scale > 0 ? std::fabs(w.energies.balance() - e0) / scale : 0.0;
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) REQUIRE(w.bodies.position[i].allFinite());  // never garbage
+    return out;
+}
+
+// A 2D square lattice of touching discs in a box of walls under gravity:
+// every ball has four springs, the stiffest case of the nominal estimate.
+json packed_box(const std::string& model, const json& properties) {
+    return {{"dimension", 2},
+            {"gravity", {0, -9.81}},
+            {"plugins", {model}},
+            {"bodies", {{{"type", "lattice"}, {"group", "grains"}, {"packing", "square"},
+                         {"box", {{"min", {0, 0}}, {"max", {0.02, 0.02}}}}, {"radius", 0.001}, {"density", 2500},
+                         {"jitter", {{"velocity", 0.05}, {"seed", 7}}}}}},
+            {"walls", {{{"type", "box"}, {"group", "walls"}, {"min", {0, 0}}, {"max", {0.02, 0.04}}}}},
+            {"contact_models", {{{"groups", {"*", "*"}}, {"model", model}, {"properties", properties}}}}};
+}
+
+// Sets the fixed step to `factor` times the critical step the models report.
+void at_factor(Simulation& sim, double factor) {
+    World& w = sim.world();
+    w.prepare();
+    w.fixed_dt = factor * w.stable_timestep().critical;
+}
+
+} // namespace
+
+TEST_CASE("linear model: 0.5 and 0.9 x the critical step are stable, 1.1 x too (the estimate is conservative), "
+          "2 x stops with the timestep named", "[stability]") {
+    const json props = {{"kn", 1e6}, {"ks", 1e6}};
+    // the leapfrog's energy error is bounded and grows as (omega dt)^2 towards the limit
+    for (auto [f, bound] : {std::pair{0.5, 0.02}, {0.9, 0.1}, {1.1, 0.25}}) {
+        Simulation sim(packed_box("linear", props));
+        at_factor(sim, f);
+        const Outcome o = run(sim, 3000);
+        INFO("factor " << f << ": " << o.message);
+        CHECK_FALSE(o.stopped);
+        CHECK(o.balance_error < bound);
+    }
+    Simulation sim(packed_box("linear", props));
+    at_factor(sim, 2.0);
+    const Outcome o = run(sim, 3000);
+    REQUIRE(o.stopped);
+    CHECK(o.quantity == "energy gain");
+    CHECK_THAT(o.message, Contains("unstable: energy gain") && Contains("x the stable limit") &&
+                              Contains("model linear for group grains") && Contains("last good state"));
+}
+
+TEST_CASE("linear_pbond: a bonded block is stable at 0.5 and 0.9 x the critical step and stops at 2 x", "[stability][bonds]") {
+    const json props = {{"kn", 1e6}, {"ks", 1e6}, {"pb_kn", 1e9}, {"pb_ks", 1e9}, {"pb_ten", 1e12}, {"pb_coh", 1e12}};
+    std::map<double, Outcome> outcome;
+    for (double f : {0.5, 0.9, 1.1, 2.0}) {
+        Simulation sim(packed_box("linear_pbond", props));
+        World& w = sim.world();
+        REQUIRE(w.bond(0, 0, 1e-9) > 0);
+        at_factor(sim, f);
+        outcome[f] = run(sim, 3000);
+        INFO("factor " << f << ": " << outcome[f].message);
+        if (f < 1) {
+            CHECK_FALSE(outcome[f].stopped);
+            CHECK(outcome[f].balance_error < 0.1);
+        } else if (!outcome[f].stopped) {
+            CHECK(outcome[f].balance_error < 0.25);  // stable is fine, garbage is not
+        } else {
+            CHECK_THAT(outcome[f].message, Contains("x the stable limit") && Contains("model linear_pbond"));
+        }
+    }
+    CHECK(outcome[2.0].stopped);
+}
+
+TEST_CASE("stiffness ratio 1e4 and mass ratio 1e4 between touching balls: the automatic step stays stable and "
+          "conserves energy", "[stability]") {
+    // three discs in a row, moving into each other; a soft and a stiff contact
+    json scene = {{"dimension", 2},
+                  {"plugins", {"linear"}},
+                  {"bodies", {{{"type", "ball"}, {"group", "a"}, {"position", {0, 0}}, {"radius", 0.001}, {"density", 2500}, {"velocity", {0.1, 0}}},
+                              {{"type", "ball"}, {"group", "b"}, {"position", {0.002, 0}}, {"radius", 0.001}, {"density", 2500}},
+                              {{"type", "ball"}, {"group", "c"}, {"position", {0.004, 0}}, {"radius", 0.001}, {"density", 2500}, {"velocity", {-0.1, 0}}}}},
+                  {"contact_models", {{{"groups", {"a", "b"}}, {"model", "linear"}, {"properties", {{"kn", 1e4}, {"ks", 1e4}}}},
+                                      {{"groups", {"b", "c"}}, {"model", "linear"}, {"properties", {{"kn", 1e8}, {"ks", 1e8}}}}}}};
+    SECTION("stiffness ratio 1e4") {
+        Simulation sim(scene);
+        const Outcome o = run(sim, 20000);
+        INFO(o.message);
+        CHECK_FALSE(o.stopped);
+        CHECK(o.balance_error < 0.1);  // accuracy, not stability: the stiff contact lasts ~4 steps
+    }
+    SECTION("mass ratio 1e4 (density 2.5e7 against 2500) with equal springs") {
+        scene["bodies"][1]["density"] = 2.5e7;
+        scene["contact_models"][1]["properties"] = {{"kn", 1e4}, {"ks", 1e4}};
+        Simulation sim(scene);
+        const Outcome o = run(sim, 20000);
+        INFO(o.message);
+        CHECK_FALSE(o.stopped);
+        CHECK(o.balance_error < 0.1);
+        // the light balls bounce off the heavy one: momentum is conserved exactly
+        const World& w = sim.world();
+        double p = 0;
+        for (std::size_t i = 0; i < 3; ++i) p += w.bodies.mass[i] * w.bodies.velocity[i].x();
+        CHECK(std::fabs(p) < 1e-12);
+    }
+}
+
+namespace {
+
+// A brittle bonded plate (rock-like, hexagonal calibration) clamped at both
+// ends; a steel ball touches its middle at `speed`.
+std::unique_ptr<Simulation> plate(double speed, double nu) {
+    const double r = 0.001, pr = 0.002, t = 0.0087;
+    const double top = r + 3 * std::sqrt(3.0) * r + r;  // surface of the 4th (top) hexagonal row: touching
+    json scene = {
+        {"dimension", 2},
+        {"plugins", {"linear", "linear_pbond"}},
+        {"bodies", {{{"type", "lattice"}, {"group", "plate"}, {"packing", "hexagonal"}, {"box", {{"min", {0, 0}}, {"max", {0.04, t}}}},
+                     {"radius", r}, {"density", 2400}},
+                    {{"type", "ball"}, {"group", "projectile"}, {"position", {0.02, top + pr}}, {"velocity", {0, -speed}},
+                     {"radius", pr}, {"density", 7800}}}},
+        {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"}, {"properties", {{"kn", 5e8}, {"ks", 5e8}, {"fric", 0.3}}}},
+                            {{"groups", {"plate", "plate"}}, {"model", "linear_pbond"},
+                             {"calibrate", {{"method", "hexagonal_2d"}, {"E", 30e9}, {"nu", nu}, {"sigma_ult", 30e6}, {"radius", r}}},
+                             {"properties", {{"fric", 0.3}}}}}},
+        {"timestep", {{"safety_factor", 0.5}}}};
+    auto sim = std::make_unique<Simulation>(scene);
+    sim->set_quiet(true);
+    World& w = sim->world();
+    const int g = w.find_group("plate");
+    REQUIRE(w.bond(g, g, 1e-9) > 0);
+    for (std::size_t i = 0; i < w.bodies.size(); ++i)
+        if (w.bodies.group[i] == g && (w.bodies.position[i].x() < 2.5 * r || w.bodies.position[i].x() > 0.04 - 2.5 * r))
+            w.bodies.fixity[i] = 63;
+    return sim;
+}
+
+} // namespace
+
+TEST_CASE("impact from 0.01 to 100 m/s on a bonded plate: elastic and intact at low speed, broken bonds with a "
+          "closed energy balance at 30 and 100 m/s", "[stability][bonds]") {
+    for (double v : {0.01, 1.0, 30.0, 100.0}) {
+        auto sim = plate(v, 0.2);
+        const Outcome o = run(*sim, 1500);
+        const World& w = sim->world();
+        INFO("speed " << v << " m/s: " << o.message << "; breaks " << w.bond_breaks.size());
+        CHECK_FALSE(o.stopped);
+        CHECK(o.balance_error < 0.01);
+        const double vy = w.bodies.velocity.back().y();  // the projectile felt the plate
+        CHECK(std::fabs(vy + v) > 1e-3 * v);
+        if (v <= 1.0) CHECK(w.bond_breaks.empty());
+        else CHECK_FALSE(w.bond_breaks.empty());
+    }
+}
+
+TEST_CASE("bond calibration with nu approaching 1/3 stays stable; nu above 1/3 is refused", "[stability][bonds]") {
+    for (double nu : {0.25, 0.33, 0.3333}) {
+        auto sim = plate(1.0, nu);
+        const Outcome o = run(*sim, 1000);
+        INFO("nu " << nu << ": " << o.message);
+        CHECK_FALSE(o.stopped);
+        CHECK(o.balance_error < 0.01);
+    }
+    CHECK_THROWS_WITH(plate(1.0, 0.34), Contains("calibrate.nu") && Contains("[0, 1/3)"));
+}
+
+TEST_CASE("a disordered, overlapping initial packing relaxes under the automatic step without gaining energy",
+          "[stability]") {
+    json scene = packed_box("linear", {{"kn", 1e6}, {"ks", 1e6}, {"fric", 0.5}, {"dp_nratio", 0.2}});
+    scene["bodies"][0]["jitter"] = {{"position", 0.0003}, {"velocity", 0.1}, {"seed", 11}};  // 30 % of r
+    Simulation sim(scene);
+    const Outcome o = run(sim, 5000);
+    INFO(o.message);
+    CHECK_FALSE(o.stopped);
+    const Energies& e = sim.world().energies;
+    CHECK(e.dashpot > 0);  // the overlaps were released and damped, not amplified
+}
+
+TEST_CASE("1e-6 m and 10 m balls behave the same in the same units: restitution is scale-free", "[stability]") {
+    // two equal balls collide head on; kn ~ E R and v ~ R keep overlap/R and e fixed
+    auto restitution = [](double R) {
+        const double kn = 1e7 * R, v = 0.1;  // t_c ~ sqrt(m/k) ~ R, so overlap/R ~ v t_c/R is fixed
+        json scene = {{"dimension", 3},
+                      {"plugins", {"linear"}},
+                      {"bodies", {{{"type", "ball"}, {"position", {0, 0, 0}}, {"radius", R}, {"density", 2500}, {"velocity", {v, 0, 0}}},
+                                  {{"type", "ball"}, {"position", {2.0001 * R, 0, 0}}, {"radius", R}, {"density", 2500}, {"velocity", {-v, 0, 0}}}}},
+                      {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"}, {"properties", {{"kn", kn}, {"ks", kn}, {"dp_nratio", 0.2}}}}}}};
+        Simulation sim(scene);
+        sim.set_quiet(true);
+        const Outcome o = run(sim, 2000);
+        INFO("R " << R << ": " << o.message);
+        CHECK_FALSE(o.stopped);
+        return sim.world().bodies.velocity[1].x() / v;
+    };
+    const double e_mm = restitution(1e-3);
+    CHECK(e_mm > 0.4);
+    CHECK(e_mm < 0.9);
+    CHECK(restitution(1e-6) == Approx(e_mm).epsilon(1e-6));
+    CHECK(restitution(10.0) == Approx(e_mm).epsilon(1e-6));
+}
+
+// ---- SPH ------------------------------------------------------------------
+
+namespace {
+
+// A small dam break (column 0.04 x 0.08 m, dp 0.01 m, tank 0.2 m) with
+// boundary balls at dp/2; c0 = `mach_factor` times the largest speed
+// sqrt(2 g H). `jitter` displaces the fluid lattice by up to that fraction of dp.
+json small_dam_break(double mach_factor, double jitter = 0) {
+    const double g = 9.81, a = 0.04, H = 0.08, dp = 0.01, db = dp / 2, h = 1.3 * dp;
+    const double t = std::ceil(2 * h / db) * db, length = 0.2;
+    const double c0 = mach_factor * std::sqrt(2 * g * H);
+    const json sph = {{"smoothing_length", h}, {"kernel", 0}, {"speed_of_sound", c0}, {"viscosity", 1}, {"alpha", 0.1}};
+    auto block = [db](double x0, double y0, double x1, double y1) { return cases::boundary_block(x0, y0, x1, y1, db); };
+    json fluid = {{"type", "lattice"}, {"group", "fluid"}, {"packing", "square"},
+                  {"box", {{"min", {0, 0}}, {"max", {a, H}}}}, {"radius", dp / 2}, {"spacing", dp},
+                  {"mass", 1000 * dp * dp}, {"fix", {"rotation"}}};
+    if (jitter > 0) fluid["jitter"] = {{"position", jitter * dp}, {"seed", 5}};
+    return {{"dimension", 2},
+            {"gravity", {0, -g}},
+            {"plugins", {"sph", "sph_passes"}},
+            {"bodies", {fluid, block(-t, -t, length + t, 0), block(-t, 0, 0, 2 * H), block(length, 0, length + t, 2 * H)}},
+            {"contact_models", {{{"groups", {"fluid", "fluid"}}, {"model", "sph"}, {"properties", sph}},
+                                {{"groups", {"fluid", "boundary"}}, {"model", "sph"}, {"properties", sph}}}},
+            {"passes", {{{"name", "sph_density_integration"}, {"properties", {{"boundary_group", 1}}}},
+                        {{"name", "sph_eos"}, {"properties", {{"speed_of_sound", c0}, {"boundary_group", 1},
+                                                              {"hydrostatic_gravity", g}, {"surface_level", H}}}},
+                        {{"name", "sph_wall_pressure"}, {"properties", {{"smoothing_length", h}, {"kernel", 0},
+                                                                        {"speed_of_sound", c0}, {"boundary_group", 1},
+                                                                        {"gravity_y", -g}}}}}}};
+}
+
+long steps_for(Simulation& sim, double seconds) {
+    World& w = sim.world();
+    w.prepare();
+    const double dt = w.fixed_dt > 0 ? w.fixed_dt : w.safety_factor * w.stable_timestep().critical;
+    return long(seconds / dt);
+}
+
+} // namespace
+
+TEST_CASE("SPH: 0.5, 0.9, 1.1 and 2 x the CFL step (0.25 h/c0) are stable (the CFL number 0.25 is a margin); 8 x stops with the timestep named",
+          "[stability][sph]") {
+    for (double f : {0.5, 0.9, 1.1, 2.0, 8.0}) {
+        Simulation sim(small_dam_break(10));
+        sim.set_quiet(true);
+        at_factor(sim, f);
+        const Outcome o = run(sim, steps_for(sim, 0.15));
+        INFO("factor " << f << ": " << o.message);
+        if (f <= 2.0) {
+            CHECK_FALSE(o.stopped);
+        } else {
+            REQUIRE(o.stopped);
+            CHECK_THAT(o.message, Contains("x the stable limit") && Contains("model sph"));
+        }
+    }
+}
+
+TEST_CASE("SPH: c0 = 5, 10 and 20 x the largest speed run; 3 x stops on the density band (issue 4)", "[stability][sph]") {
+    for (double m : {5.0, 10.0, 20.0}) {
+        Simulation sim(small_dam_break(m));
+        sim.set_quiet(true);
+        const Outcome o = run(sim, steps_for(sim, 0.15));
+        INFO("c0 = " << m << " x: " << o.message);
+        CHECK_FALSE(o.stopped);
+    }
+    Simulation sim(small_dam_break(3));
+    sim.set_quiet(true);
+    const Outcome o = run(sim, steps_for(sim, 0.15));
+    REQUIRE(o.stopped);
+    CHECK(o.quantity == "sph_density");
+    CHECK_THAT(o.message, Contains("outside rho0 (1 +- 0.05)") && Contains("speed of sound") && Contains("too low") &&
+                              Contains("last good state"));
+}
+
+TEST_CASE("SPH: a disordered initial lattice (20 % of dp) relaxes without leaving the density band", "[stability][sph]") {
+    Simulation sim(small_dam_break(10, 0.2));
+    sim.set_quiet(true);
+    const Outcome o = run(sim, steps_for(sim, 0.1));
+    INFO(o.message);
+    CHECK_FALSE(o.stopped);
+}
