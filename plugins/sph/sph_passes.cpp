@@ -80,6 +80,16 @@ struct SphEos {
         for (uint32_t i = 0; i < v.body_count; ++i) p[i] = b_ * (std::pow(rho[i] / rho0_, gamma_) - 1.0);
     }
 
+    // Checkpoints carry whether the initial density was set: a restarted
+    // run must not reset the densities to the hydrostatic profile.
+    // Bytes: format version 1, then the flag.
+    std::vector<unsigned char> save_state() const { return {1, static_cast<unsigned char>(initialised_ ? 1 : 0)}; }
+    bool load_state(const unsigned char* data, std::size_t size) {
+        if (size != 2 || data[0] != 1 || data[1] > 1) return false;
+        initialised_ = data[1] == 1;
+        return true;
+    }
+
 private:
     // Inverse of eq. 80 for p = ρ0 g (H - y): the particles start in
     // hydrostatic balance instead of ringing from a uniform density.
