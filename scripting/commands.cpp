@@ -362,6 +362,7 @@ void Simulation::after_step() {
         write_png_snapshot();
         next_png_time_ += png_interval_;
     }
+    keep_last_good();
     if (checkpoint_every_ > 0 && !out_dir_.empty() && w.time + 1e-12 >= next_checkpoint_time_) {
         save_checkpoint(checkpoint_path());
         while (next_checkpoint_time_ <= w.time + 1e-12) next_checkpoint_time_ += checkpoint_every_;
@@ -479,6 +480,7 @@ void Simulation::run() {
         next_png_time_ = png_interval_;
     }
     try {
+        keep_last_good();
         while (next_command_ < commands_.size()) {
             if (!run_command(commands_[next_command_])) break;  // stopped mid-command by a signal
             ++next_command_;
@@ -489,6 +491,14 @@ void Simulation::run() {
             interrupted_ = true;
             if (!out_dir_.empty()) save_checkpoint(checkpoint_path());
         }
+    } catch (const RunError& e) {
+        finish_run(cpu0);
+        const std::string file = write_last_good();
+        if (file.empty()) throw;
+        throw RunError(std::string(e.what()) + "\nthe last good state is saved in " + file +
+                       "; continue from it with a smaller timestep, e.g.\n  plab restart " + file +
+                       (w.fixed_dt > 0 ? " --set timestep.fixed=" + fmt_g(0.5 * w.fixed_dt)
+                                       : " --set timestep.safety_factor=" + fmt_g(0.5 * w.safety_factor)));
     } catch (...) {
         finish_run(cpu0);
         throw;

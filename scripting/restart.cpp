@@ -95,7 +95,26 @@ void Simulation::set_checkpoint_every(double seconds) {
     next_checkpoint_time_ = world_->time + seconds;
 }
 
-void Simulation::save_checkpoint(const std::string& path) const {
+void Simulation::save_checkpoint(const std::string& path) const { write_file_atomically(path, checkpoint_bytes()); }
+
+std::string Simulation::last_good_path() const { return (fs::path(out_dir_) / "last_good.plab").string(); }
+
+// Every `snapshot_interval` steps the run keeps its checkpoint in memory, at
+// the state the world's own last-good snapshot holds; when the run goes
+// unstable it is written out, to restart from with a smaller timestep.
+void Simulation::keep_last_good() {
+    const World& w = *world_;
+    if (out_dir_.empty() || w.snapshot_interval == 0) return;
+    if (last_good_.empty() || w.step_count % w.snapshot_interval == 0) last_good_ = checkpoint_bytes();
+}
+
+std::string Simulation::write_last_good() const {
+    if (last_good_.empty()) return "";
+    write_file_atomically(last_good_path(), last_good_);
+    return last_good_path();
+}
+
+std::string Simulation::checkpoint_bytes() const {
     CheckpointWriter out;
     const auto used = plugins_used(scene_, scene_dir_, *host_, *world_);
     out.section("plugins");
@@ -136,7 +155,7 @@ void Simulation::save_checkpoint(const std::string& path) const {
     out.f64(checkpoint_every_);
     out.f64(next_checkpoint_time_);
     out.section("end");
-    write_file_atomically(path, out.bytes());
+    return out.bytes();
 }
 
 std::unique_ptr<Simulation> Simulation::restart(const std::string& path, const std::vector<std::string>& sets,

@@ -134,6 +134,11 @@ private:
     double checkpoint_every_ = 0, next_checkpoint_time_ = 0;
     bool resumed_ = false, interrupted_ = false;
     bool run_command(const Command& c);  // false: stopped by a signal before it completed
+    std::string last_good_;  // checkpoint bytes of the last good state (runs with outputs)
+    std::string checkpoint_bytes() const;
+    std::string last_good_path() const;
+    void keep_last_good();
+    std::string write_last_good() const;  // its path, or "" when none is kept
     void after_step();
     void finish_run(std::clock_t cpu0);
     void write_outputs() const;

@@ -286,3 +286,37 @@ TEST_CASE("a checkpoint that cannot load says why: foreign, newer, truncated, mi
     CHECK_THAT(restart_error(bad), Contains("history slot 'shear_force_q' of model 'linear'") &&
                                        Contains("shear_force_x, shear_force_y, shear_force_z"));
 }
+
+TEST_CASE("a run that goes unstable leaves its last good state as a checkpoint that a smaller timestep finishes",
+          "[restart][stability]") {
+    json scene = settling_scene();
+    // planes hold the grains in, so a timestep 3x the stable limit blows up
+    // instead of letting them fly away
+    scene["walls"] = {{{"type", "plane"}, {"point", {0, 0}}, {"normal", {0, 1}}},
+                      {{"type", "plane"}, {"point", {0, 0}}, {"normal", {1, 0}}},
+                      {{"type", "plane"}, {"point", {0.1, 0}}, {"normal", {-1, 0}}},
+                      {{"type", "plane"}, {"point", {0, 0.2}}, {"normal", {0, -1}}}};
+    scene["timestep"] = {{"fixed", 4e-3}, {"allow_unstable", true}};
+    scene["commands"] = {{{"cycle", 3000}}};
+    Simulation sim(scene);
+    sim.set_quiet(true);
+    sim.set_output_dir(scratch("unstable").string());
+    // the NaN check fires late (positions ~1e200 by then): keep the start as
+    // the last good state, so the restart begins from a state worth keeping
+    sim.world().snapshot_interval = 1000;
+    std::string message;
+    try {
+        sim.run();
+    } catch (const RunError& e) {
+        message = e.what();
+    }
+    REQUIRE_THAT(message, Contains("last good state is saved in") && Contains("plab restart") &&
+                              Contains("--set timestep.fixed=0.002"));
+    const std::string file = (scratch("unstable") / "last_good.plab").string();
+    auto resumed = Simulation::restart(file, {"timestep.fixed=2e-4", "timestep.allow_unstable=false"});
+    resumed->set_quiet(true);
+    CHECK(resumed->world().step_count == 0);
+    resumed->run();  // finishes the cycle command: 3000 steps in all
+    CHECK(resumed->world().step_count == 3000);
+    CHECK(resumed->world().energies.kinetic < 1.0);  // settled, not blown up
+}
