@@ -48,13 +48,14 @@ fs::path scratch(const std::string& name) {
     return dir / name;
 }
 
-json settling_scene() {
-    return {{"dimension", 2},
+json settling_scene(int dim = 2) {
+    auto v = [dim](double x, double y, double z) { return dim == 2 ? json::array({x, y}) : json::array({x, y, z}); };
+    return {{"dimension", dim},
             {"plugins", {"linear"}},
-            {"gravity", {0, -9.81}},
-            {"bodies", {{{"type", "random_fill"}, {"group", "grains"}, {"box", {{"min", {0, 0}}, {"max", {0.1, 0.1}}}},
-                         {"radius", {0.002, 0.004}}, {"density", 2500}, {"count", 150}, {"seed", 3}}}},
-            {"walls", {{{"type", "box"}, {"min", {0, 0}}, {"max", {0.1, 0.2}}}}},
+            {"gravity", v(0, -9.81, 0)},
+            {"bodies", {{{"type", "random_fill"}, {"group", "grains"}, {"box", {{"min", v(0, 0, 0)}, {"max", v(0.1, 0.1, 0.1)}}},
+                         {"radius", {0.002, 0.004}}, {"density", 2500}, {"count", dim == 2 ? 150 : 250}, {"seed", 3}}}},
+            {"walls", {{{"type", "box"}, {"min", v(0, 0, 0)}, {"max", v(0.1, 0.2, 0.1)}}}},
             {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"},
                                  {"properties", {{"kn", 1e4}, {"ks", 5e3}, {"fric", 0.5}, {"dp_nratio", 0.2}}}}}}};
 }
@@ -128,16 +129,18 @@ Outcome interrupted(const json& scene, bool bond, long k, long n, const std::str
 
 } // namespace
 
-TEST_CASE("a settling pile restarted at step k reaches the uninterrupted state at step n, 1 and 2 threads",
+TEST_CASE("a settling pile restarted at step k reaches the uninterrupted state at step n, 2D and 3D, 1 and 2 threads",
           "[restart]") {
     ThreadsBack back;
-    for (int threads : {1, 2}) {
-        INFO(threads << " threads");
-        use_threads(threads);
-        const Outcome whole = uninterrupted(settling_scene(), false, 700);
-        const Outcome resumed = interrupted(settling_scene(), false, 437, 700, "pile.plab");
-        CHECK(resumed.hash == whole.hash);
-    }
+    for (int dim : {2, 3})
+        for (int threads : {1, 2}) {
+            INFO(dim << "D, " << threads << " threads");
+            use_threads(threads);
+            const long n = dim == 2 ? 700 : 300, k = dim == 2 ? 437 : 151;
+            const Outcome whole = uninterrupted(settling_scene(dim), false, n);
+            const Outcome resumed = interrupted(settling_scene(dim), false, k, n, "pile.plab");
+            CHECK(resumed.hash == whole.hash);
+        }
 }
 
 TEST_CASE("a plate whose bonds break restarts bit-identically, break log included, 1 and 2 threads",
