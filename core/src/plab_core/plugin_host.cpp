@@ -135,13 +135,22 @@ void PluginHost::add_search_dir(const std::string& dir, bool front) {
     else dirs_.push_back(dir);
 }
 
+namespace {
+// A name no file can have (too long, say) is simply not there: no
+// filesystem_error escapes the resolution of a scene's plug-in name.
+bool file_exists(const fs::path& p) {
+    std::error_code ec;
+    return fs::exists(p, ec) && !ec;
+}
+} // namespace
+
 std::string PluginHost::resolve(const std::string& ref, const std::string& relative_to) const {
     const bool is_path = ref.find('/') != std::string::npos || fs::path(ref).extension() == ".so";
     std::vector<std::string> tried;
     if (is_path) {
         fs::path p(ref);
         if (p.is_relative() && !relative_to.empty()) p = fs::path(relative_to) / p;
-        if (fs::exists(p)) return fs::canonical(p).string();
+        if (file_exists(p)) return fs::canonical(p).string();
         throw PluginError("plug-in library '" + ref + "' not found (looked for " + p.string() + ")");
     }
     std::vector<std::string> dirs = dirs_;
@@ -150,7 +159,7 @@ std::string PluginHost::resolve(const std::string& ref, const std::string& relat
         for (const std::string& file : {"plab_" + ref + ".so", "lib" + ref + ".so", ref + ".so"}) {
             fs::path p = fs::path(d) / file;
             tried.push_back(p.string());
-            if (fs::exists(p)) return fs::canonical(p).string();
+            if (file_exists(p)) return fs::canonical(p).string();
         }
     throw PluginError("plug-in '" + ref + "' not found in the search path (" + join(dirs) +
                       "); set PLAB_PLUGIN_PATH or give a path to the .so");
