@@ -266,7 +266,7 @@ std::string slot_list(const plab_contact_model_desc& d) {
 
 // ---- the world ------------------------------------------------------------
 
-void WorldCheckpoint::save(const World& w, CheckpointWriter& out) {
+void WorldCheckpoint::save_scalars(const World& w, CheckpointWriter& out) {
     out.section("world");
     out.u32(std::uint32_t(w.dim));
     out.f64(w.time);
@@ -281,17 +281,18 @@ void WorldCheckpoint::save(const World& w, CheckpointWriter& out) {
     out.u64(w.groups_.size());
     for (const auto& g : w.groups_) out.str(g);
     out.column(w.cmat_);
+}
 
-    save_bodies(w.bodies, out);
-    save_walls(w.walls, out);
-
+void WorldCheckpoint::save_fields(const World& w, CheckpointWriter& out) {
     out.section("fields");
     out.u64(w.field_names_.size());
     for (std::size_t f = 0; f < w.field_names_.size(); ++f) {
         out.str(w.field_names_[f]);
         out.column(w.fields_[f]);
     }
+}
 
+void WorldCheckpoint::save_contacts(const World& w, CheckpointWriter& out) {
     out.section("contacts");
     out.u64(w.instances_.size());
     for (const auto& inst : w.instances_) {
@@ -302,7 +303,9 @@ void WorldCheckpoint::save(const World& w, CheckpointWriter& out) {
         save_set(*inst, inst->balls, out);
         save_set(*inst, inst->walls, out);
     }
+}
 
+void WorldCheckpoint::save_detection(const World& w, CheckpointWriter& out) {
     out.section("detection");
     out.u8(w.need_rebuild_);
     out.u8(w.prepared_);
@@ -313,7 +316,9 @@ void WorldCheckpoint::save(const World& w, CheckpointWriter& out) {
     out.column(w.pc_end1_);
     out.column(w.pc_end2_);
     out.column(w.pc_wall_);
+}
 
+void WorldCheckpoint::save_passes(const World& w, CheckpointWriter& out) {
     out.section("passes");
     out.u64(w.passes_.size());
     for (const PassInstance& p : w.passes_) {
@@ -334,7 +339,9 @@ void WorldCheckpoint::save(const World& w, CheckpointWriter& out) {
         buf.resize(need);
         out.column(buf);
     }
+}
 
+void WorldCheckpoint::save_log(const World& w, CheckpointWriter& out) {
     out.section("bond_breaks");
     out.u64(w.bond_breaks.size());
     for (const BondBreak& b : w.bond_breaks) {
@@ -353,7 +360,7 @@ void WorldCheckpoint::save(const World& w, CheckpointWriter& out) {
     out.u64(0);
 }
 
-void WorldCheckpoint::load(World& w, CheckpointReader& in) {
+void WorldCheckpoint::load_scalars(World& w, CheckpointReader& in) {
     in.section("world");
     const std::uint32_t dim = in.u32();
     if (int(dim) != w.dim) in.fail("a " + std::to_string(dim) + "D state for a " + std::to_string(w.dim) + "D scene");
@@ -376,12 +383,9 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
     for (int inst : cmat)
         if (inst < -1 || inst >= int(w.instances_.size())) in.fail("the assignment table names model instance " + std::to_string(inst));
     w.cmat_ = std::move(cmat);
+}
 
-    load_bodies(w.bodies, in);
-    for (int g : w.bodies.group)
-        if (g < 0 || std::size_t(g) >= w.groups_.size()) in.fail("a body has group index " + std::to_string(g));
-    load_walls(w.walls, w, in);
-
+void WorldCheckpoint::load_fields(World& w, CheckpointReader& in) {
     in.section("fields");
     const std::uint64_t n_fields = in.u64();
     std::vector<bool> seen(w.field_names_.size(), false);
@@ -396,7 +400,9 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
     }
     for (std::size_t f = 0; f < seen.size(); ++f)  // a field new since the file was written starts at its default
         if (!seen[f]) w.fields_[f].assign(w.bodies.size(), w.field_defaults_[f]);
+}
 
+void WorldCheckpoint::load_contacts(World& w, CheckpointReader& in) {
     in.section("contacts");
     const std::uint64_t n_inst = in.u64();
     if (n_inst != w.instances_.size())
@@ -428,7 +434,9 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
                 if (!ok) in.fail("a contact of model '" + model + "' names a body or facet that does not exist");
             }
     }
+}
 
+void WorldCheckpoint::load_detection(World& w, CheckpointReader& in) {
     in.section("detection");
     w.need_rebuild_ = in.u8() != 0;
     w.prepared_ = in.u8() != 0;
@@ -443,7 +451,9 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
         in.fail("the neighbour-list reference positions do not match the bodies");
     if (w.prepared_ && (w.k_trans_.size() != w.bodies.size() || w.k_rot_.size() != w.bodies.size()))
         in.fail("the stiffness sums do not match the bodies");
+}
 
+void WorldCheckpoint::load_passes(World& w, CheckpointReader& in) {
     in.section("passes");
     const std::uint64_t n_passes = in.u64();
     if (n_passes != w.passes_.size())
@@ -468,7 +478,9 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
             in.fail("pass '" + name + "' (" + w.host_->library_of_pass(name) + ") refused its saved state of " +
                     std::to_string(bytes.size()) + " bytes (written by another version of the plug-in?)");
     }
+}
 
+void WorldCheckpoint::load_log(World& w, CheckpointReader& in) {
     in.section("bond_breaks");
     w.bond_breaks.resize(in.u64());
     for (BondBreak& b : w.bond_breaks) {
@@ -483,6 +495,32 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
 
     in.section("rng");
     if (in.u64() != 0) in.fail("it holds random-number generator states this build has no use for");
+}
+
+// Sections in file order; bodies and walls come between the assignment
+// table and the fields.
+void WorldCheckpoint::save(const World& w, CheckpointWriter& out) {
+    save_scalars(w, out);
+    save_bodies(w.bodies, out);
+    save_walls(w.walls, out);
+    save_fields(w, out);
+    save_contacts(w, out);
+    save_detection(w, out);
+    save_passes(w, out);
+    save_log(w, out);
+}
+
+void WorldCheckpoint::load(World& w, CheckpointReader& in) {
+    load_scalars(w, in);
+    load_bodies(w.bodies, in);
+    for (int g : w.bodies.group)
+        if (g < 0 || std::size_t(g) >= w.groups_.size()) in.fail("a body has group index " + std::to_string(g));
+    load_walls(w.walls, w, in);
+    load_fields(w, in);
+    load_contacts(w, in);
+    load_detection(w, in);
+    load_passes(w, in);
+    load_log(w, in);
 
     w.nominal_valid_ = false;  // recomputed from the state, as the uninterrupted run did
     w.snapshot_.valid = false;

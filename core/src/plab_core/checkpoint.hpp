@@ -101,6 +101,21 @@ struct WorldCheckpoint {
     // `w` must be built from the same scene (groups, model instances, passes,
     // fields registered); its state is replaced by the file's.
     static void load(World& w, CheckpointReader& in);
+
+private:
+    // one pair per group of sections, in file order
+    static void save_scalars(const World& w, CheckpointWriter& out);  // world, assignment
+    static void save_fields(const World& w, CheckpointWriter& out);
+    static void save_contacts(const World& w, CheckpointWriter& out);
+    static void save_detection(const World& w, CheckpointWriter& out);
+    static void save_passes(const World& w, CheckpointWriter& out);
+    static void save_log(const World& w, CheckpointWriter& out);  // bond_breaks, rng
+    static void load_scalars(World& w, CheckpointReader& in);
+    static void load_fields(World& w, CheckpointReader& in);
+    static void load_contacts(World& w, CheckpointReader& in);
+    static void load_detection(World& w, CheckpointReader& in);
+    static void load_passes(World& w, CheckpointReader& in);
+    static void load_log(World& w, CheckpointReader& in);
 };
 
 } // namespace plab
