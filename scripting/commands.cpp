@@ -474,7 +474,7 @@ void Simulation::run() {
         write_vtk_snapshot();
         next_vtk_time_ = vtk_interval_;
     }
-    if (png_interval_ > 0 && !out_dir_.empty() && w.step_count == 0) {
+    if (png_interval_ > 0 && !out_dir_.empty() && w.step_count == 0 && !resumed_) {
         w.prepare();
         write_png_snapshot();
         next_png_time_ = png_interval_;

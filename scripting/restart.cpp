@@ -152,6 +152,8 @@ std::string Simulation::checkpoint_bytes() const {
         out.f64(t);
         out.str(name);
     }
+    out.u64(std::uint64_t(png_frames_));
+    out.f64(next_png_time_);
     out.f64(checkpoint_every_);
     out.f64(next_checkpoint_time_);
     out.section("end");
@@ -213,6 +215,8 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& path, const s
         t = in.f64();
         name = in.str();
     }
+    sim->png_frames_ = int(in.u64());
+    sim->next_png_time_ = in.f64();
     sim->checkpoint_every_ = in.f64();
     sim->next_checkpoint_time_ = in.f64();
     in.section("end");
