@@ -171,6 +171,20 @@ TEST_CASE("an SPH tank restarts bit-identically (fields and the EOS pass state c
     }
 }
 
+TEST_CASE("a coupled SPH-DEM scene (sedimentation) restarts bit-identically, 1 and 2 threads", "[restart][coupling]") {
+    json scene = read_scene_file(std::string(PLAB_SOURCE_DIR) + "/examples/coupled/sedimentation.json");
+    scene.erase("commands");
+    scene.erase("output");
+    ThreadsBack back;
+    for (int threads : {1, 2}) {
+        INFO(threads << " threads");
+        use_threads(threads);
+        const Outcome whole = uninterrupted(scene, false, 40);
+        const Outcome resumed = interrupted(scene, false, 17, 40, "coupled.plab");
+        CHECK(resumed.hash == whole.hash);
+    }
+}
+
 TEST_CASE("a run stopped by a signal mid-command writes a checkpoint from which the commands finish identically",
           "[restart]") {
     json scene = settling_scene();
