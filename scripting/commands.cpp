@@ -363,6 +363,11 @@ void Simulation::after_step() {
         write_png_snapshot();
         next_png_time_ += png_interval_;
     }
+    keep_last_good();
+    if (checkpoint_every_ > 0 && !out_dir_.empty() && w.time + 1e-12 >= next_checkpoint_time_) {
+        save_checkpoint(checkpoint_path());
+        while (next_checkpoint_time_ <= w.time + 1e-12) next_checkpoint_time_ += checkpoint_every_;
+    }
 }
 
 void Simulation::cycle(long n) {
@@ -378,6 +383,7 @@ void Simulation::cycle(long n) {
         w.step();
         ++run_.steps;
         after_step();
+        if (stop_signal()) break;  // the step is complete: stop here, run() writes the checkpoint
         if (progress && (k & 255) == 0) {
             const auto now = std::chrono::steady_clock::now();
             if (std::chrono::duration<double>(now - last).count() > 0.5) {
@@ -403,66 +409,100 @@ void Simulation::finish_run(std::clock_t cpu0) {
     if (!out_dir_.empty()) write_outputs();
 }
 
+// One command, resumable: its progress is measured from the step it began
+// at (kept in checkpoints), so a restarted run takes the same steps.
+bool Simulation::run_command(const Command& c) {
+    World& w = *world_;
+    if (!command_started_) {
+        command_started_ = true;
+        command_start_step_ = w.step_count;
+        command_end_time_ = c.kind == Command::solve_time ? w.time + c.value : 0.0;
+        command_breaks_before_ = w.bond_breaks.size();
+    }
+    const auto done = [&] { return long(w.step_count - command_start_step_); };
+    switch (c.kind) {
+    case Command::cycle:
+        cycle(long(c.value) - done());
+        return done() >= long(c.value);
+    case Command::solve_time: {
+        const double end = command_end_time_;
+        while (w.time < end - 1e-12 * std::fabs(end)) {
+            if (c.stop_on_bond_break && w.bond_breaks.size() > command_breaks_before_) break;
+            if (done() >= c.max_cycles)
+                throw RunError(c.path + ": reached t = " + fmt_g(w.time) + " s of " + fmt_g(end) +
+                               " s after max_cycles = " + std::to_string(c.max_cycles) +
+                               " cycles; raise max_cycles or check the timestep");
+            if (stop_signal()) return false;
+            cycle(1);
+        }
+        return true;
+    }
+    case Command::solve_ratio: {
+        if (w.step_count == 0) w.prepare();
+        for (;;) {
+            const long d = done();
+            if (d % 10 == 0) {  // the ratio is checked every 10 cycles
+                if (w.unbalanced_force_ratio() <= c.value) return true;
+                if (d >= c.max_cycles)
+                    throw RunError(c.path + ": ratio " + fmt_g(w.unbalanced_force_ratio()) + " still above " +
+                                   fmt_g(c.value) + " after " + std::to_string(d) +
+                                   " cycles (max_cycles); add local or viscous damping, or raise max_cycles");
+            }
+            if (stop_signal()) return false;
+            cycle(10 - d % 10);
+        }
+    }
+    case Command::set: c.apply(w); w.mark_dirty(); return true;
+    case Command::output: if (!out_dir_.empty()) write_vtk_snapshot(); return true;
+    }
+    return true;
+}
+
 void Simulation::run() {
     started_ = std::chrono::steady_clock::now();
     const std::clock_t cpu0 = std::clock();
     World& w = *world_;
-    if (!quiet_) {
+    if (!quiet_ && !resumed_) {
         w.prepare();
         const StableStep s = w.stable_timestep();
         if (w.fixed_dt > 0) spdlog::info("timestep fixed at {:g} s; stable limit {:g} s ({})", w.fixed_dt, s.critical, s.limited_by);
         else spdlog::info("timestep automatic: {:g} x critical {:g} s ({})", w.safety_factor, s.critical, s.limited_by);
     }
-    if (vtk_interval_ > 0 && !out_dir_.empty() && w.step_count == 0) {
+    if (!quiet_ && resumed_)
+        spdlog::info("restarted at step {} (t = {:g} s), command {} of {}", w.step_count, w.time, next_command_ + 1,
+                     commands_.size());
+    if (vtk_interval_ > 0 && !out_dir_.empty() && w.step_count == 0 && !resumed_) {
         w.prepare();
         write_vtk_snapshot();
         next_vtk_time_ = vtk_interval_;
     }
-    if (png_interval_ > 0 && !out_dir_.empty() && w.step_count == 0) {
+    if (png_interval_ > 0 && !out_dir_.empty() && w.step_count == 0 && !resumed_) {
         w.prepare();
         write_png_snapshot();
         next_png_time_ = png_interval_;
     }
     try {
-        for (const Command& c : commands_) {
-            switch (c.kind) {
-            case Command::cycle: cycle(long(c.value)); break;
-            case Command::solve_time: {
-                const double end = w.time + c.value;
-                long done = 0;
-                const std::size_t breaks_before = w.bond_breaks.size();
-                while (w.time < end - 1e-12 * std::fabs(end)) {
-                    if (c.stop_on_bond_break && w.bond_breaks.size() > breaks_before) break;
-                    if (done++ >= c.max_cycles)
-                        throw RunError(c.path + ": reached t = " + fmt_g(w.time) + " s of " + fmt_g(end) +
-                                       " s after max_cycles = " + std::to_string(c.max_cycles) +
-                                       " cycles; raise max_cycles or check the timestep");
-                    cycle(1);
-                }
-                break;
-            }
-            case Command::solve_ratio: {
-                long done = 0;
-                if (w.step_count == 0) w.prepare();
-                while (w.unbalanced_force_ratio() > c.value) {
-                    if (done >= c.max_cycles)
-                        throw RunError(c.path + ": ratio " + fmt_g(w.unbalanced_force_ratio()) + " still above " +
-                                       fmt_g(c.value) + " after " + std::to_string(done) +
-                                       " cycles (max_cycles); add local or viscous damping, or raise max_cycles");
-                    cycle(10);
-                    done += 10;
-                }
-                break;
-            }
-            case Command::set: c.apply(w); w.mark_dirty(); break;
-            case Command::output: if (!out_dir_.empty()) write_vtk_snapshot(); break;
-            }
+        keep_last_good();
+        while (next_command_ < commands_.size()) {
+            if (!run_command(commands_[next_command_])) break;  // stopped mid-command by a signal
+            ++next_command_;
+            command_started_ = false;
+            if (stop_signal()) break;
         }
-    } catch (const RunError&) {
+        if (stop_signal() && next_command_ < commands_.size()) {
+            interrupted_ = true;
+            if (!out_dir_.empty()) save_checkpoint(checkpoint_path());
+        }
+    } catch (const RunError& e) {
         // the world is back at its last good state: keep it for inspection
         if (!out_dir_.empty()) write_vtk_snapshot();
         finish_run(cpu0);
-        throw;
+        const std::string file = write_last_good();
+        if (file.empty()) throw;
+        throw RunError(std::string(e.what()) + "\nthe last good state is saved in " + file +
+                       "; continue from it with a smaller timestep, e.g.\n  plab restart " + file +
+                       (w.fixed_dt > 0 ? " --set timestep.fixed=" + fmt_g(0.5 * w.fixed_dt)
+                                       : " --set timestep.safety_factor=" + fmt_g(0.5 * w.safety_factor)));
     } catch (...) {
         finish_run(cpu0);
         throw;

@@ -5,10 +5,12 @@
 #include "sweep.hpp"
 #include "validation.hpp"
 
+#include <plab_core/checkpoint.hpp>
 #include <plab_core/plugin_host.hpp>
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <iostream>
@@ -21,20 +23,86 @@ namespace {
 
 const char* usage =
     "usage:\n"
-    "  plab run SCENE.json [--set PATH=VALUE]... [--out DIR] [--quiet]\n"
+    "  plab run SCENE.json [--set PATH=VALUE]... [--out DIR] [--quiet] [--checkpoint-every SECONDS]\n"
+    "  plab restart CHECKPOINT.plab [--set PATH=VALUE]... [--out DIR] [--quiet] [--checkpoint-every SECONDS]\n"
     "  plab sweep SCENE.json --vary PATH=v1,v2 [--vary ...] [--set PATH=VALUE]... [--jobs N] [--out DIR]\n"
     "  plab plugins [--describe MODEL]\n"
     "  plab validate CASE... | --list | --all [--quick] [--report DIR]\n"
     "  plab new-model NAME [DIR]   (an out-of-tree contact-model project)\n"
     "  plab plot HISTORY.csv [--x COL] [--y A,B] [--ref REF.csv --ref-y COL [--band F]] [--out FILE.png]\n";
 
+double checkpoint_interval(const std::string& text) {
+    char* end = nullptr;
+    const double t = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end || !(t > 0) || !std::isfinite(t))
+        throw InputError("--checkpoint-every", "expected a positive simulated time in s, got '" + text + "'; valid range (0, inf)");
+    return t;
+}
+
+// Runs to the end, or until SIGINT/SIGTERM: then the checkpoint is written
+// and the exit code is 128 + the signal, as a shell reports a killed job.
+int run_and_report(Simulation& sim, bool quiet, const std::string& out) {
+    install_stop_handlers();
+    try {
+        sim.run();
+    } catch (const RunError& e) {
+        spdlog::error("run stopped: {}", e.what());
+        return 3;
+    }
+    if (sim.interrupted()) {
+        const World& w = sim.world();
+        std::cerr << "plab: stopped by signal " << stop_signal() << " after step " << w.step_count << " (t = " << w.time
+                  << " s); checkpoint and outputs written" << (out.empty() ? "" : " to " + out)
+                  << ".\ncontinue with:\n  plab restart " << sim.checkpoint_path() << "\n";
+        return 128 + stop_signal();
+    }
+    const json s = sim.summary();
+    if (!quiet)
+        spdlog::info("done: {} steps, {:.6g} s simulated, {:.3g} s wall, {:.3g} particle-steps/s, {} contacts{}",
+                     s["steps"].get<std::uint64_t>(), s["simulated_time"].get<double>(), s["wall_seconds"].get<double>(),
+                     s["particle_steps_per_second"].get<double>(), s["contacts"].get<std::size_t>(),
+                     out.empty() ? "" : "; outputs in " + out);
+    return 0;
+}
+
+int cmd_restart(const std::vector<std::string>& args) {
+    std::string path, out;
+    std::vector<std::string> sets;
+    bool quiet = false;
+    double every = 0;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--set" && i + 1 < args.size()) sets.push_back(args[++i]);
+        else if (a == "--out" && i + 1 < args.size()) out = args[++i];
+        else if (a == "--checkpoint-every" && i + 1 < args.size()) every = checkpoint_interval(args[++i]);
+        else if (a == "--quiet") quiet = true;
+        else if (a.rfind("--", 0) == 0) throw InputError("command line", "unknown option " + a + "\n" + usage);
+        else if (path.empty()) path = a;
+        else throw InputError("command line", "more than one checkpoint given (" + path + ", " + a + ")");
+    }
+    if (path.empty()) throw InputError("command line", std::string("no checkpoint given\n") + usage);
+    std::unique_ptr<Simulation> sim;
+    try {
+        sim = Simulation::restart(path, sets);
+    } catch (const CheckpointError& e) {
+        std::cerr << "error: cannot restart: " << e.what() << "\n";
+        return 2;
+    }
+    sim->set_quiet(quiet);
+    if (!out.empty()) sim->set_output_dir(out);
+    if (every > 0) sim->set_checkpoint_every(every);
+    return run_and_report(*sim, quiet, sim->output_dir());
+}
+
 int cmd_run(const std::vector<std::string>& args) {
     std::string scene_path, out;
     std::vector<std::string> sets;
     bool quiet = false;
+    double every = 0;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--set" && i + 1 < args.size()) sets.push_back(args[++i]);
+        else if (a == "--checkpoint-every" && i + 1 < args.size()) every = checkpoint_interval(args[++i]);
         else if (a == "--out" && i + 1 < args.size()) out = args[++i];
         else if (a == "--quiet") quiet = true;
         else if (a.rfind("--", 0) == 0) throw InputError("command line", "unknown option " + a + "\n" + usage);
@@ -51,19 +119,8 @@ int cmd_run(const std::vector<std::string>& args) {
     if (out.empty() && !(scene.contains("output") && scene["output"].contains("dir")))
         out = "plab_out/" + fs::path(scene_path).stem().string();
     if (!out.empty()) sim.set_output_dir(out);
-    try {
-        sim.run();
-    } catch (const RunError& e) {
-        spdlog::error("run stopped: {}", e.what());
-        return 3;
-    }
-    const json s = sim.summary();
-    if (!quiet)
-        spdlog::info("done: {} steps, {:.6g} s simulated, {:.3g} s wall, {:.3g} particle-steps/s, {} contacts{}",
-                     s["steps"].get<std::uint64_t>(), s["simulated_time"].get<double>(), s["wall_seconds"].get<double>(),
-                     s["particle_steps_per_second"].get<double>(), s["contacts"].get<std::size_t>(),
-                     out.empty() ? "" : "; outputs in " + out);
-    return 0;
+    if (every > 0) sim.set_checkpoint_every(every);
+    return run_and_report(sim, quiet, sim.output_dir());
 }
 
 double default_range(const plab_contact_model_desc& d) {
@@ -182,6 +239,7 @@ int main(int argc, char** argv) {
     args.erase(args.begin());
     try {
         if (cmd == "run") return cmd_run(args);
+        if (cmd == "restart") return cmd_restart(args);
         if (cmd == "plugins") return cmd_plugins(args);
         if (cmd == "sweep") return cmd_sweep(args, fs::read_symlink("/proc/self/exe").string());
         if (cmd == "validate") return cmd_validate(args);

@@ -71,6 +71,23 @@ public:
     json summary() const;
     void write_vtk_snapshot();
 
+    // ---- checkpoint and restart (restart.cpp, docs/restart.md) ----
+    // The complete state of the run — world, the remaining commands and the
+    // progress of the current one, output counters — written atomically.
+    void save_checkpoint(const std::string& path) const;
+    // The run saved in a checkpoint, ready to continue with run(); `sets`
+    // (PATH=VALUE) change the scene it was started from. Throws
+    // CheckpointError or InputError saying exactly why it cannot load.
+    static std::unique_ptr<Simulation> restart(const std::string& path, const std::vector<std::string>& sets = {},
+                                               std::shared_ptr<PluginHost> host = nullptr);
+    // A checkpoint to checkpoint_path() every `seconds` of simulated time (0: never).
+    void set_checkpoint_every(double seconds);
+    std::string checkpoint_path() const;
+    const std::string& output_dir() const { return out_dir_; }
+    // run() returned early because of SIGINT/SIGTERM (see stop_signal());
+    // the checkpoint and the outputs are written.
+    bool interrupted() const { return interrupted_; }
+
 private:
     json scene_;
     std::string scene_dir_, out_dir_;
@@ -110,11 +127,32 @@ private:
     std::function<void(World&)> load_bond(const Node& n);
     // Balls chosen by group, id and/or region, evaluated when a command runs.
     std::function<std::vector<int>(const World&)> select(const Node& n, const World& w) const;
+    // command progress, so a checkpoint taken mid-command resumes it exactly
+    std::size_t next_command_ = 0;
+    bool command_started_ = false;
+    std::uint64_t command_start_step_ = 0;
+    double command_end_time_ = 0;  // solve time: absolute end
+    std::size_t command_breaks_before_ = 0;
+    double checkpoint_every_ = 0, next_checkpoint_time_ = 0;
+    bool resumed_ = false, interrupted_ = false;
+    bool run_command(const Command& c);  // false: stopped by a signal before it completed
+    std::string last_good_;  // checkpoint bytes of the last good state (runs with outputs)
+    std::string checkpoint_bytes() const;
+    std::string last_good_path() const;
+    void keep_last_good();
+    std::string write_last_good() const;  // its path, or "" when none is kept
     void after_step();
     void finish_run(std::clock_t cpu0);
     void write_outputs() const;
     void check_domain(const std::string& where, std::size_t first) const;
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
 };
+
+// SIGINT/SIGTERM: the handler only records the signal; the run finishes
+// the current step, writes a checkpoint and its outputs, and returns.
+void install_stop_handlers();
+int stop_signal();  // 0, or the signal that asked the run to stop
+void request_stop(int signal);  // as if `signal` had arrived (tests)
+void clear_stop();
 
 } // namespace plab

@@ -95,6 +95,16 @@ struct SphEos {
         if (worst < v.body_count) throw plab::UnstableState{band_message(v, worst)};
     }
 
+    // Checkpoints carry whether the initial density was set: a restarted
+    // run must not reset the densities to the hydrostatic profile.
+    // Bytes: format version 1, then the flag.
+    std::vector<unsigned char> save_state() const { return {1, static_cast<unsigned char>(initialised_ ? 1 : 0)}; }
+    bool load_state(const unsigned char* data, std::size_t size) {
+        if (size != 2 || data[0] != 1 || data[1] > 1) return false;
+        initialised_ = data[1] == 1;
+        return true;
+    }
+
 private:
     // Names the ball, the density against the band and the likely cause:
     // a speed of sound too low for the flow (the Mach number sets the

@@ -141,6 +141,16 @@ TEST_CASE("an unknown plug-in names its path, the name and the plug-ins found", 
                                   Contains("plug-ins found:") && Contains("linear"));
 }
 
+// Found by tests/fuzz (crash-a0a7525...): a name longer than a file name may
+// be made std::filesystem throw instead of reporting "not found".
+TEST_CASE("a plug-in name too long for a file name is an unknown plug-in, not a filesystem error", "[scene][fuzz]") {
+    json s = base_scene();
+    s["plugins"] = json::array({"linear" + std::string(300, 'x')});
+    CHECK_THAT(load_error(s), Contains("scene.plugins[0]") && Contains("not found") && Contains("plug-ins found:"));
+    s["plugins"] = json::array({std::string(300, 'x') + "/plab_linear.so"});
+    CHECK_THAT(load_error(s), Contains("scene.plugins[0]") && Contains("not found"));
+}
+
 TEST_CASE("an unknown contact model lists the models available", "[scene]") {
     json s = base_scene();
     s["contact_models"][0]["model"] = "hertz";

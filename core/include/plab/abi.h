@@ -15,7 +15,9 @@
  *   2  plab_pass_view gains `diagnostic` / `diagnostic_capacity` and a pass
  *      may return PLAB_PASS_UNSTABLE: the state it checks is unphysical
  *      (e.g. SPH density far from rho0). The host stops the run with the
- *      pass's message and keeps the last good state.
+ *      pass's message and keeps the last good state. plab_registrar gains
+ *      register_pass_state (checkpoints of pass state); a plug-in that calls
+ *      it must be loaded by a host that provides it (ABI 2 or later).
  *
  * Contact models are called once per *batch* of contacts over host-owned
  * structure-of-arrays data (plab_contact_batch). Passes are called once per
@@ -235,15 +237,37 @@ typedef struct plab_pass_desc {
     int (*run)(void* state, const double* props, const plab_pass_view* view);
 } plab_pass_desc;
 
+/* ---- private state of a pass, for checkpoints (optional) ---------------- */
+
+/* A pass whose instance keeps state from one cycle to the next (e.g. "the
+ * initial density is set") registers these so a checkpoint can carry it; a
+ * pass without them is taken to be stateless (its state is rebuilt from its
+ * properties). Contact-model instances are const during compute() and need
+ * none. The bytes are the pass's own format: it should begin them with its
+ * own version number so a later build can load an older checkpoint or refuse. */
+typedef struct plab_pass_state_hooks {
+    const char* pass_name; /* a pass this library registered */
+    /* Writes the state into out[0..capacity) and returns the bytes it needs;
+     * the host calls again with a larger buffer when that exceeds capacity. */
+    uint64_t (*save)(const void* state, unsigned char* out, uint64_t capacity);
+    /* Restores from `size` bytes written by save(); returns 0, or non-zero
+     * when it does not understand them (the host then refuses the checkpoint). */
+    int (*load)(void* state, const unsigned char* data, uint64_t size);
+} plab_pass_state_hooks;
+
 /* ---- registration ------------------------------------------------------- */
 
 /* The host hands a registrar to plab_plugin_init. The descriptions passed in
  * must stay valid while the library is loaded (static storage). Each call
- * returns 0 when accepted. */
+ * returns 0 when accepted.
+ *
+ * register_pass_state is new in ABI 2 (appended: plug-ins built against
+ * ABI 1 never read it, so they load unchanged). */
 typedef struct plab_registrar {
     void* host;
     int (*register_contact_model)(void* host, const plab_contact_model_desc* desc);
     int (*register_pass)(void* host, const plab_pass_desc* desc);
+    int (*register_pass_state)(void* host, const plab_pass_state_hooks* hooks);
 } plab_registrar;
 
 typedef uint32_t (*plab_plugin_abi_version_fn)(void);

@@ -10,6 +10,9 @@
 //       static constexpr plab_field_desc fields[] = {...};
 //       explicit MyPass(const double* props);
 //       void run(const plab_pass_view& v);
+//       // optional, for a pass that keeps state between cycles (checkpoints):
+//       std::vector<unsigned char> save_state() const;
+//       bool load_state(const unsigned char* data, std::size_t size);
 //   };
 //   PLAB_PLUGIN(plab::add_pass<MyPass>(r))
 //
@@ -24,6 +27,7 @@
 #include <algorithm>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace plab {
 
@@ -37,6 +41,20 @@ struct UnstableState {
 namespace detail {
 template <class P, class = void> struct has_properties : std::false_type {};
 template <class P> struct has_properties<P, std::void_t<decltype(P::properties)>> : std::true_type {};
+
+template <class P, class = void> struct has_state : std::false_type {};
+template <class P> struct has_state<P, std::void_t<decltype(&P::save_state), decltype(&P::load_state)>> : std::true_type {};
+
+template <class P> uint64_t save_pass_state(const void* state, unsigned char* out, uint64_t capacity) noexcept {
+    try {
+        const std::vector<unsigned char> bytes = static_cast<const P*>(state)->save_state();
+        if (bytes.size() <= capacity) std::copy(bytes.begin(), bytes.end(), out);
+        return bytes.size();
+    } catch (...) { return 0; }
+}
+template <class P> int load_pass_state(void* state, const unsigned char* data, uint64_t size) noexcept {
+    try { return static_cast<P*>(state)->load_state(data, std::size_t(size)) ? 0 : 1; } catch (...) { return 2; }
+}
 
 template <class P> int run_pass(void* state, const double*, const plab_pass_view* v) noexcept {
     if (!state) return 1;
@@ -77,7 +95,14 @@ template <class P> const plab_pass_desc* pass_desc() {
     return &d;
 }
 
-template <class P> int add_pass(const plab_registrar* r) { return r->register_pass(r->host, pass_desc<P>()); }
+template <class P> int add_pass(const plab_registrar* r) {
+    const int rc = r->register_pass(r->host, pass_desc<P>());
+    if constexpr (detail::has_state<P>::value) {
+        static const plab_pass_state_hooks hooks{P::name, &detail::save_pass_state<P>, &detail::load_pass_state<P>};
+        if (rc == 0) return r->register_pass_state(r->host, &hooks);
+    }
+    return rc;
+}
 
 } // namespace plab
 

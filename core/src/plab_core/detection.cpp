@@ -4,6 +4,8 @@
 // of their ends, and history is carried from the old list by that key.
 #include "world.hpp"
 
+#include "error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -54,17 +56,19 @@ void World::build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>
 
     Vec lo = bodies.position[0], hi = lo;
     for (const Vec& p : bodies.position) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
+    if (!(hi - lo).allFinite())  // a run blowing up: stop it here, before the grid overflows
+        throw RunError("non-finite ball positions at step " + std::to_string(step_count) +
+                       " (extent " + std::to_string((hi - lo).norm()) + " m); likely cause: a timestep above the stable limit");
     std::array<long, 3> dims{1, 1, 1};
-    // coarsen the grid if it would have far more cells than bodies
+    // coarsen the grid if it would have far more cells than bodies (counted
+    // in doubles: a scattered run must not overflow the cell count)
     for (;;) {
-        long total = 1;
-        for (int c = 0; c < dim; ++c) {
-            dims[c] = std::max(1L, long((hi[c] - lo[c]) / cell) + 1);
-            total *= dims[c];
-        }
-        if (total <= long(8 * n + 64)) break;
+        double total = 1;
+        for (int c = 0; c < dim; ++c) total *= std::floor((hi[c] - lo[c]) / cell) + 1;
+        if (total <= double(8 * n + 64)) break;
         cell *= 1.5;
     }
+    for (int c = 0; c < dim; ++c) dims[c] = std::max(1L, long((hi[c] - lo[c]) / cell) + 1);
     auto cell_of = [&](const Vec& p, int c) { return std::min(dims[c] - 1, long((p[c] - lo[c]) / cell)); };
     auto flat = [&](long x, long y, long z) { return (z * dims[1] + y) * dims[0] + x; };
     const long n_cells = dims[0] * dims[1] * dims[2];

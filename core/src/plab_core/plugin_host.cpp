@@ -29,6 +29,9 @@ int cb_register_model(void* host, const plab_contact_model_desc* d) {
 int cb_register_pass(void* host, const plab_pass_desc* d) {
     return static_cast<PluginHost*>(host)->register_pass(d);
 }
+int cb_register_pass_state(void* host, const plab_pass_state_hooks* h) {
+    return static_cast<PluginHost*>(host)->register_pass_state(h);
+}
 
 std::string fmt(double v) {
     std::ostringstream s;
@@ -132,13 +135,22 @@ void PluginHost::add_search_dir(const std::string& dir, bool front) {
     else dirs_.push_back(dir);
 }
 
+namespace {
+// A name no file can have (too long, say) is simply not there: no
+// filesystem_error escapes the resolution of a scene's plug-in name.
+bool file_exists(const fs::path& p) {
+    std::error_code ec;
+    return fs::exists(p, ec) && !ec;
+}
+} // namespace
+
 std::string PluginHost::resolve(const std::string& ref, const std::string& relative_to) const {
     const bool is_path = ref.find('/') != std::string::npos || fs::path(ref).extension() == ".so";
     std::vector<std::string> tried;
     if (is_path) {
         fs::path p(ref);
         if (p.is_relative() && !relative_to.empty()) p = fs::path(relative_to) / p;
-        if (fs::exists(p)) return fs::canonical(p).string();
+        if (file_exists(p)) return fs::canonical(p).string();
         throw PluginError("plug-in library '" + ref + "' not found (looked for " + p.string() + ")");
     }
     std::vector<std::string> dirs = dirs_;
@@ -147,7 +159,7 @@ std::string PluginHost::resolve(const std::string& ref, const std::string& relat
         for (const std::string& file : {"plab_" + ref + ".so", "lib" + ref + ".so", ref + ".so"}) {
             fs::path p = fs::path(d) / file;
             tried.push_back(p.string());
-            if (fs::exists(p)) return fs::canonical(p).string();
+            if (file_exists(p)) return fs::canonical(p).string();
         }
     throw PluginError("plug-in '" + ref + "' not found in the search path (" + join(dirs) +
                       "); set PLAB_PLUGIN_PATH or give a path to the .so");
@@ -192,7 +204,7 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
     problems_.clear();
     const auto before_models = models_;
     const auto before_passes = passes_;
-    plab_registrar reg{this, &cb_register_model, &cb_register_pass};
+    plab_registrar reg{this, &cb_register_model, &cb_register_pass, &cb_register_pass_state};
     const int rc = lib->get<int(const plab_registrar*)>("plab_plugin_init")(&reg);
     loading_.clear();
     if (rc != 0 || !problems_.empty()) {
@@ -200,7 +212,8 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
         for (auto it = models_.begin(); it != models_.end();)
             it = before_models.count(it->first) ? std::next(it) : (model_lib_.erase(it->first), models_.erase(it));
         for (auto it = passes_.begin(); it != passes_.end();)
-            it = before_passes.count(it->first) ? std::next(it) : (pass_lib_.erase(it->first), passes_.erase(it));
+            it = before_passes.count(it->first) ? std::next(it)
+                                                : (pass_lib_.erase(it->first), pass_state_.erase(it->first), passes_.erase(it));
         std::string why = problems_.empty() ? "plab_plugin_init returned " + std::to_string(rc) : join(problems_, "; ");
         throw PluginError("plug-in library " + path + " refused: " + why);
     }
@@ -244,6 +257,25 @@ int PluginHost::register_pass(const plab_pass_desc* d) {
     passes_[name] = d;
     pass_lib_[name] = loading_;
     return 0;
+}
+
+int PluginHost::register_pass_state(const plab_pass_state_hooks* h) {
+    if (!h || !h->pass_name || !h->save || !h->load) {
+        problems_.push_back("register_pass_state: hooks need a pass name, save and load");
+        return 1;
+    }
+    const auto it = pass_lib_.find(h->pass_name);
+    if (it == pass_lib_.end() || it->second != loading_) {
+        problems_.push_back(std::string("register_pass_state: '") + h->pass_name + "' is not a pass of this library");
+        return 1;
+    }
+    pass_state_[h->pass_name] = h;
+    return 0;
+}
+
+const plab_pass_state_hooks* PluginHost::pass_state(const std::string& name) const {
+    auto it = pass_state_.find(name);
+    return it == pass_state_.end() ? nullptr : it->second;
 }
 
 const plab_contact_model_desc* PluginHost::model(const std::string& name) const {

@@ -46,11 +46,15 @@ public:
     std::vector<std::string> model_names() const;
     std::vector<std::string> pass_names() const;
     const std::string& library_of_model(const std::string& name) const { return model_lib_.at(name); }
+    const std::string& library_of_pass(const std::string& name) const { return pass_lib_.at(name); }
+    // Checkpoint hooks of a pass with private state; nullptr: stateless.
+    const plab_pass_state_hooks* pass_state(const std::string& name) const;
     const std::vector<LoadedLibrary>& libraries() const { return libs_; }
 
     // registrar callbacks (C ABI)
     int register_model(const plab_contact_model_desc* d);
     int register_pass(const plab_pass_desc* d);
+    int register_pass_state(const plab_pass_state_hooks* h);
 
 private:
     std::vector<std::string> dirs_;
@@ -58,6 +62,7 @@ private:
     std::map<std::string, const plab_contact_model_desc*> models_;
     std::map<std::string, const plab_pass_desc*> passes_;
     std::map<std::string, std::string> model_lib_, pass_lib_;
+    std::map<std::string, const plab_pass_state_hooks*> pass_state_;
     std::string loading_;               // library being initialised
     std::vector<std::string> problems_; // registration problems of `loading_`
 };

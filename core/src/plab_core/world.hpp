@@ -173,6 +173,7 @@ public:
     void mark_dirty() { need_rebuild_ = true; prepared_ = false; nominal_valid_ = false; }
 
 private:
+    friend struct WorldCheckpoint;  // checkpoint.cpp saves and restores the private state below
     std::shared_ptr<PluginHost> host_;
     std::vector<std::string> groups_;
     std::vector<int> cmat_;  // groups × groups → instance, -1 none

@@ -1,0 +1,530 @@
+// Checkpoint file format and the World's state in it (see checkpoint.hpp).
+// Everything a later step reads is saved as it is, derived columns included
+// (contact geometry, per-body stiffness sums, the contact list passes see,
+// the Verlet reference positions): recomputing them after a restart would
+// use whole-step velocities where the uninterrupted run used half-step ones,
+// and the answer would drift in the last bits.
+#include "checkpoint.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+namespace fs = std::filesystem;
+
+namespace plab {
+
+namespace {
+constexpr char kMagic[8] = {'P', 'L', 'A', 'B', 'C', 'K', 'P', 'T'};
+constexpr std::uint32_t kEndianMarker = 0x01020304u;
+} // namespace
+
+CheckpointWriter::CheckpointWriter() {
+    raw(kMagic, sizeof kMagic);
+    u32(kCheckpointFormat);
+    u32(kEndianMarker);
+}
+
+CheckpointReader::CheckpointReader(const std::string& path) : path_(path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw CheckpointError("cannot open checkpoint " + path);
+    data_.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    if (data_.size() < 16 || std::memcmp(data_.data(), kMagic, sizeof kMagic) != 0)
+        throw CheckpointError(path + " is not a plab checkpoint (no PLABCKPT header)");
+    pos_ = sizeof kMagic;
+    format_ = u32();
+    const std::uint32_t marker = u32();
+    if (marker != kEndianMarker)
+        throw CheckpointError(path + " was written on a machine of the other byte order (marker " +
+                              std::to_string(marker) + "); checkpoints load only on the byte order that wrote them");
+    if (format_ > kCheckpointFormat)
+        throw CheckpointError(path + " has checkpoint format version " + std::to_string(format_) +
+                              ", newer than this plab reads (" + std::to_string(kCheckpointOldestFormat) + " to " +
+                              std::to_string(kCheckpointFormat) + "); restart it with the plab that wrote it or a newer one");
+    if (format_ < kCheckpointOldestFormat)
+        throw CheckpointError(path + " has checkpoint format version " + std::to_string(format_) +
+                              ", older than this plab reads (" + std::to_string(kCheckpointOldestFormat) + " to " +
+                              std::to_string(kCheckpointFormat) + ")");
+}
+
+void CheckpointReader::fail(const std::string& why) const {
+    throw CheckpointError("checkpoint " + path_ + (section_.empty() ? "" : ", section '" + section_ + "'") + ": " + why);
+}
+
+void CheckpointReader::raw(void* p, std::size_t n) {
+    if (n > data_.size() - pos_) fail("the file ends early (truncated or damaged)");
+    std::memcpy(p, data_.data() + pos_, n);
+    pos_ += n;
+}
+
+std::uint64_t CheckpointReader::count(std::size_t element_bytes) {
+    const std::uint64_t n = u64();
+    if (n > (data_.size() - pos_) / element_bytes) fail("a length of " + std::to_string(n) + " runs past the end of the file");
+    return n;
+}
+
+std::string CheckpointReader::str() {
+    const std::uint64_t n = count(1);
+    std::string s(data_.data() + pos_, n);
+    pos_ += n;
+    return s;
+}
+
+void CheckpointReader::section(const std::string& name) {
+    const std::size_t at = pos_;
+    const std::uint64_t n = u64();
+    std::string found;
+    if (n <= 64 && n <= data_.size() - pos_) {
+        found.assign(data_.data() + pos_, n);
+        pos_ += n;
+    }
+    if (found != name)
+        fail("expected section '" + name + "' at byte " + std::to_string(at) + ", found " +
+             (found.empty() ? std::string("something else") : "'" + found + "'") + " (damaged file?)");
+    section_ = name;
+}
+
+void write_file_atomically(const std::string& path, const std::string& bytes) {
+    const fs::path p(path);
+    if (p.has_parent_path()) fs::create_directories(p.parent_path());
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream f(tmp, std::ios::binary);
+        f.write(bytes.data(), std::streamsize(bytes.size()));
+        f.flush();
+        if (!f) throw CheckpointError("cannot write checkpoint " + tmp);
+    }
+    fs::rename(tmp, p);
+}
+
+namespace {
+
+// ---- bodies and walls -----------------------------------------------------
+
+void save_bodies(const Bodies& b, CheckpointWriter& out) {
+    out.section("bodies");
+    out.column(b.id);
+    for (const auto* v : {&b.position, &b.velocity, &b.angular_velocity, &b.force, &b.moment, &b.applied_force,
+                          &b.applied_moment})
+        out.vecs(*v);
+    for (const auto* v : {&b.radius, &b.mass, &b.inertia, &b.local_damping, &b.viscous_damping}) out.column(*v);
+    out.column(b.group);
+    out.column(b.fixity);
+    out.u64(b.next_id);
+}
+
+void load_bodies(Bodies& b, CheckpointReader& in) {
+    in.section("bodies");
+    b.id = in.column<BodyId>();
+    for (auto* v : {&b.position, &b.velocity, &b.angular_velocity, &b.force, &b.moment, &b.applied_force,
+                    &b.applied_moment})
+        *v = in.vecs();
+    for (auto* v : {&b.radius, &b.mass, &b.inertia, &b.local_damping, &b.viscous_damping}) *v = in.column<double>();
+    b.group = in.column<int>();
+    b.fixity = in.column<std::uint8_t>();
+    b.next_id = in.u64();
+    const std::size_t n = b.id.size();
+    for (std::size_t len : {b.position.size(), b.velocity.size(), b.angular_velocity.size(), b.force.size(),
+                            b.moment.size(), b.applied_force.size(), b.applied_moment.size(), b.radius.size(),
+                            b.mass.size(), b.inertia.size(), b.local_damping.size(), b.viscous_damping.size(),
+                            b.group.size(), b.fixity.size()})
+        if (len != n) in.fail("body columns of different lengths (" + std::to_string(len) + " vs " + std::to_string(n) + ")");
+}
+
+void save_walls(const Walls& w, CheckpointWriter& out) {
+    out.section("walls");
+    out.u64(w.walls.size());
+    for (const Wall& x : w.walls) {
+        out.str(x.name);
+        out.u64(std::uint64_t(x.group));
+        for (const Vec* v : {&x.velocity, &x.angular_velocity, &x.centre, &x.force, &x.moment}) out.vec(*v);
+        out.column(x.facets);
+    }
+    out.u64(w.facets.size());
+    for (const Facet& f : w.facets) {
+        out.u32(std::uint32_t(f.kind));
+        out.u64(std::uint64_t(f.wall));
+        out.u64(f.id);
+        for (const Vec* v : {&f.a, &f.b, &f.c}) out.vec(*v);
+    }
+    out.u64(w.next_facet_id);
+}
+
+void load_walls(Walls& w, const World& world, CheckpointReader& in) {
+    in.section("walls");
+    const std::uint64_t n = in.u64();
+    if (n != w.walls.size())
+        in.fail("it holds " + std::to_string(n) + " walls, the scene makes " + std::to_string(w.walls.size()));
+    for (Wall& x : w.walls) {
+        const std::string name = in.str();
+        if (name != x.name) in.fail("wall '" + name + "' where the scene has '" + x.name + "'");
+        x.group = int(in.u64());
+        if (x.group < 0 || std::size_t(x.group) >= world.group_names().size()) in.fail("wall '" + name + "' has an unknown group");
+        for (Vec* v : {&x.velocity, &x.angular_velocity, &x.centre, &x.force, &x.moment}) *v = in.vec();
+        x.facets = in.column<int>();
+    }
+    w.facets.resize(in.u64());
+    for (Facet& f : w.facets) {
+        const std::uint32_t kind = in.u32();
+        if (kind > std::uint32_t(FacetKind::plane)) in.fail("unknown facet kind " + std::to_string(kind));
+        f.kind = FacetKind(kind);
+        f.wall = int(in.u64());
+        if (f.wall < 0 || std::size_t(f.wall) >= w.walls.size()) in.fail("a facet names wall " + std::to_string(f.wall));
+        f.id = in.u64();
+        for (Vec* v : {&f.a, &f.b, &f.c}) *v = in.vec();
+    }
+    for (const Wall& x : w.walls)
+        for (int fi : x.facets)
+            if (fi < 0 || std::size_t(fi) >= w.facets.size()) in.fail("wall '" + x.name + "' lists facet " + std::to_string(fi));
+    w.next_facet_id = in.u64();
+}
+
+// ---- contacts -------------------------------------------------------------
+
+// The columns of a contact set other than ends, keys and history, by name,
+// so a later format can add one and still read this one.
+std::vector<std::pair<const char*, std::vector<double>*>> double_columns(ContactSet& s) {
+    return {{"normal", &s.normal}, {"gap", &s.gap}, {"distance", &s.distance}, {"rel_velocity", &s.rel_velocity},
+            {"rel_angular_velocity", &s.rel_angular_velocity}, {"point", &s.point}, {"radius1", &s.radius1},
+            {"radius2", &s.radius2}, {"mass1", &s.mass1}, {"mass2", &s.mass2}, {"eff_mass", &s.eff_mass},
+            {"eff_radius", &s.eff_radius}, {"force", &s.force}, {"moment1", &s.moment1}, {"moment2", &s.moment2},
+            {"strain", &s.strain}, {"slip", &s.slip}, {"dashpot", &s.dashpot}, {"k_t", &s.k_t}, {"k_r", &s.k_r},
+            {"dt_limit", &s.dt_limit}, {"break_energy", &s.break_energy}};
+}
+
+void save_set(const ModelInstance& inst, const ContactSet& cs, CheckpointWriter& out) {
+    auto& s = const_cast<ContactSet&>(cs);  // double_columns() hands out pointers; nothing is changed
+    out.column(s.end1);
+    out.column(s.end2);
+    out.column(s.key1);
+    out.column(s.key2);
+    out.column(s.active);
+    out.column(s.interior);
+    // history by slot: one column per slot name (see save_instance)
+    for (int h = 0; h < inst.stride; ++h) {
+        std::vector<double> col(s.size());
+        for (std::size_t k = 0; k < s.size(); ++k) col[k] = s.history[k * inst.stride + h];
+        out.column(col);
+    }
+    const auto cols = double_columns(s);
+    out.u64(cols.size());
+    for (const auto& [name, col] : cols) {
+        out.str(name);
+        out.column(*col);
+    }
+    out.u64(s.acc1.size());
+    for (const auto& a : s.acc1) out.column(a);
+    for (const auto& a : s.acc2) out.column(a);
+}
+
+// `slot_of_file[h]`: the model's slot for the file's slot h.
+void load_set(const ModelInstance& inst, ContactSet& s, const std::vector<int>& slot_of_file, CheckpointReader& in) {
+    s.end1 = in.column<std::int32_t>();
+    s.end2 = in.column<std::int32_t>();
+    s.key1 = in.column<BodyId>();
+    s.key2 = in.column<BodyId>();
+    const std::size_t n = s.end1.size();
+    s.resize_columns(n, int(inst.fields_accumulated.size()));
+    s.active = in.column<std::uint8_t>();
+    s.interior = in.column<std::uint8_t>();
+    if (s.end2.size() != n || s.key1.size() != n || s.key2.size() != n || s.active.size() != n)
+        in.fail("contact columns of model '" + inst.model + "' have different lengths");
+    s.history.assign(n * inst.stride, 0.0);
+    for (int h = 0; h < inst.stride; ++h)  // slots the file lacks start at their default
+        for (std::size_t k = 0; k < n; ++k) s.history[k * inst.stride + h] = inst.desc->history[h].default_value;
+    for (int model_slot : slot_of_file) {
+        const std::vector<double> col = in.column<double>();
+        if (col.size() != n) in.fail("a history column of model '" + inst.model + "' has the wrong length");
+        for (std::size_t k = 0; k < n; ++k) s.history[k * inst.stride + model_slot] = col[k];
+    }
+    auto cols = double_columns(s);
+    const std::uint64_t n_cols = in.u64();
+    for (std::uint64_t c = 0; c < n_cols; ++c) {
+        const std::string name = in.str();
+        std::vector<double> values = in.column<double>();
+        for (auto& [known, col] : cols)
+            if (name == known) {
+                if (values.size() != col->size()) in.fail("contact column '" + name + "' has the wrong length");
+                *col = std::move(values);
+            }
+    }
+    const std::uint64_t n_acc = in.u64();
+    if (n_acc != s.acc1.size()) in.fail("model '" + inst.model + "' accumulates a different number of fields");
+    for (auto& a : s.acc1) a = in.column<double>();
+    for (auto& a : s.acc2) a = in.column<double>();
+}
+
+std::string slot_list(const plab_contact_model_desc& d) {
+    std::string s;
+    for (std::uint32_t h = 0; h < d.history_count; ++h) s += (h ? ", " : "") + std::string(d.history[h].name);
+    return s.empty() ? "none" : s;
+}
+
+} // namespace
+
+// ---- the world ------------------------------------------------------------
+
+void WorldCheckpoint::save_scalars(const World& w, CheckpointWriter& out) {
+    out.section("world");
+    out.u32(std::uint32_t(w.dim));
+    out.f64(w.time);
+    out.u64(w.step_count);
+    out.f64(w.last_dt);
+    out.vec(w.gravity);
+    out.u64(w.rebuilds);
+    const Energies& e = w.energies;
+    for (double v : {e.kinetic, e.strain, e.body, e.boundary, e.slip, e.dashpot, e.local_damping, e.bond_break}) out.f64(v);
+
+    out.section("assignment");
+    out.u64(w.groups_.size());
+    for (const auto& g : w.groups_) out.str(g);
+    out.column(w.cmat_);
+}
+
+void WorldCheckpoint::save_fields(const World& w, CheckpointWriter& out) {
+    out.section("fields");
+    out.u64(w.field_names_.size());
+    for (std::size_t f = 0; f < w.field_names_.size(); ++f) {
+        out.str(w.field_names_[f]);
+        out.column(w.fields_[f]);
+    }
+}
+
+void WorldCheckpoint::save_contacts(const World& w, CheckpointWriter& out) {
+    out.section("contacts");
+    out.u64(w.instances_.size());
+    for (const auto& inst : w.instances_) {
+        out.str(inst->model);
+        out.column(inst->props);
+        out.u64(std::uint64_t(inst->stride));
+        for (int h = 0; h < inst->stride; ++h) out.str(inst->desc->history[h].name);
+        save_set(*inst, inst->balls, out);
+        save_set(*inst, inst->walls, out);
+    }
+}
+
+void WorldCheckpoint::save_detection(const World& w, CheckpointWriter& out) {
+    out.section("detection");
+    out.u8(w.need_rebuild_);
+    out.u8(w.prepared_);
+    out.vecs(w.position_at_build_);
+    out.f64(w.wall_motion_since_build_);
+    out.column(w.k_trans_);
+    out.column(w.k_rot_);
+    out.column(w.pc_end1_);
+    out.column(w.pc_end2_);
+    out.column(w.pc_wall_);
+}
+
+void WorldCheckpoint::save_passes(const World& w, CheckpointWriter& out) {
+    out.section("passes");
+    out.u64(w.passes_.size());
+    for (const PassInstance& p : w.passes_) {
+        out.str(p.desc->name);
+        out.column(p.props);
+        const plab_pass_state_hooks* hooks = w.host_->pass_state(p.desc->name);
+        out.u8(hooks != nullptr);
+        if (!hooks) continue;
+        std::vector<unsigned char> buf(64);
+        std::uint64_t need = hooks->save(p.state, buf.data(), buf.size());
+        if (need > buf.size()) {
+            buf.resize(need);
+            need = hooks->save(p.state, buf.data(), buf.size());
+        }
+        if (need > buf.size() || need == 0)
+            throw CheckpointError(std::string("pass '") + p.desc->name + "' (" + w.host_->library_of_pass(p.desc->name) +
+                                  ") failed to save its private state");
+        buf.resize(need);
+        out.column(buf);
+    }
+}
+
+void WorldCheckpoint::save_log(const World& w, CheckpointWriter& out) {
+    out.section("bond_breaks");
+    out.u64(w.bond_breaks.size());
+    for (const BondBreak& b : w.bond_breaks) {
+        out.u64(b.step);
+        out.f64(b.time);
+        out.u64(b.id1);
+        out.u64(b.id2);
+        out.vec(b.point);
+        out.u32(std::uint32_t(b.mode));
+        out.str(b.model);
+    }
+
+    // The kernel draws no random numbers while it runs (generators draw
+    // theirs, seeded, when the scene loads): no generator state to carry.
+    out.section("rng");
+    out.u64(0);
+}
+
+void WorldCheckpoint::load_scalars(World& w, CheckpointReader& in) {
+    in.section("world");
+    const std::uint32_t dim = in.u32();
+    if (int(dim) != w.dim) in.fail("a " + std::to_string(dim) + "D state for a " + std::to_string(w.dim) + "D scene");
+    w.time = in.f64();
+    w.step_count = in.u64();
+    w.last_dt = in.f64();
+    w.gravity = in.vec();
+    w.rebuilds = in.u64();
+    Energies& e = w.energies;
+    for (double* v : {&e.kinetic, &e.strain, &e.body, &e.boundary, &e.slip, &e.dashpot, &e.local_damping, &e.bond_break})
+        *v = in.f64();
+
+    in.section("assignment");
+    const std::uint64_t n_groups = in.u64();
+    std::vector<std::string> groups;
+    for (std::uint64_t g = 0; g < n_groups; ++g) groups.push_back(in.str());
+    if (groups != w.groups_) in.fail("its groups differ from the scene's (the scene is not the one that wrote it)");
+    std::vector<int> cmat = in.column<int>();
+    if (cmat.size() != w.cmat_.size()) in.fail("the assignment table has the wrong size");
+    for (int inst : cmat)
+        if (inst < -1 || inst >= int(w.instances_.size())) in.fail("the assignment table names model instance " + std::to_string(inst));
+    w.cmat_ = std::move(cmat);
+}
+
+void WorldCheckpoint::load_fields(World& w, CheckpointReader& in) {
+    in.section("fields");
+    const std::uint64_t n_fields = in.u64();
+    std::vector<bool> seen(w.field_names_.size(), false);
+    for (std::uint64_t f = 0; f < n_fields; ++f) {
+        const std::string name = in.str();
+        std::vector<double> values = in.column<double>();
+        const int idx = w.field_index(name);
+        if (idx < 0) in.fail("body field '" + name + "' is registered by no plug-in this scene loads");
+        if (values.size() != w.bodies.size()) in.fail("body field '" + name + "' has the wrong length");
+        w.fields_[idx] = std::move(values);
+        seen[idx] = true;
+    }
+    for (std::size_t f = 0; f < seen.size(); ++f)  // a field new since the file was written starts at its default
+        if (!seen[f]) w.fields_[f].assign(w.bodies.size(), w.field_defaults_[f]);
+}
+
+void WorldCheckpoint::load_contacts(World& w, CheckpointReader& in) {
+    in.section("contacts");
+    const std::uint64_t n_inst = in.u64();
+    if (n_inst != w.instances_.size())
+        in.fail("it holds " + std::to_string(n_inst) + " contact-model instances, the scene makes " +
+                std::to_string(w.instances_.size()));
+    for (auto& inst : w.instances_) {
+        const std::string model = in.str();
+        if (model != inst->model) in.fail("model '" + model + "' where the scene has '" + inst->model + "'");
+        in.column<double>();  // the properties it ran with; the scene's (with --set) apply from here on
+        const std::uint64_t n_slots = in.u64();
+        std::vector<int> slot_of_file;
+        for (std::uint64_t h = 0; h < n_slots; ++h) {
+            const std::string slot = in.str();
+            int found = -1;
+            for (int m = 0; m < inst->stride; ++m)
+                if (slot == inst->desc->history[m].name) found = m;
+            if (found < 0)
+                in.fail("history slot '" + slot + "' of model '" + model + "' is not declared by the loaded library " +
+                        w.host_->library_of_model(model) + " (its slots: " + slot_list(*inst->desc) +
+                        "); the contact history it holds would be lost — restart with the plug-in that wrote it");
+            slot_of_file.push_back(found);
+        }
+        load_set(*inst, inst->balls, slot_of_file, in);
+        load_set(*inst, inst->walls, slot_of_file, in);
+        for (const ContactSet* s : {&inst->balls, &inst->walls})
+            for (std::size_t k = 0; k < s->size(); ++k) {
+                const bool ok = s->end1[k] >= 0 && std::size_t(s->end1[k]) < w.bodies.size() && s->end2[k] >= 0 &&
+                                std::size_t(s->end2[k]) < (s->with_wall ? w.walls.facets.size() : w.bodies.size());
+                if (!ok) in.fail("a contact of model '" + model + "' names a body or facet that does not exist");
+            }
+    }
+}
+
+void WorldCheckpoint::load_detection(World& w, CheckpointReader& in) {
+    in.section("detection");
+    w.need_rebuild_ = in.u8() != 0;
+    w.prepared_ = in.u8() != 0;
+    w.position_at_build_ = in.vecs();
+    w.wall_motion_since_build_ = in.f64();
+    w.k_trans_ = in.column<double>();
+    w.k_rot_ = in.column<double>();
+    w.pc_end1_ = in.column<std::int32_t>();
+    w.pc_end2_ = in.column<std::int32_t>();
+    w.pc_wall_ = in.column<std::uint8_t>();
+    if (!w.need_rebuild_ && w.position_at_build_.size() != w.bodies.size())
+        in.fail("the neighbour-list reference positions do not match the bodies");
+    if (w.prepared_ && (w.k_trans_.size() != w.bodies.size() || w.k_rot_.size() != w.bodies.size()))
+        in.fail("the stiffness sums do not match the bodies");
+}
+
+void WorldCheckpoint::load_passes(World& w, CheckpointReader& in) {
+    in.section("passes");
+    const std::uint64_t n_passes = in.u64();
+    if (n_passes != w.passes_.size())
+        in.fail("it holds " + std::to_string(n_passes) + " passes, the scene runs " + std::to_string(w.passes_.size()));
+    for (PassInstance& p : w.passes_) {
+        const std::string name = in.str();
+        if (name != p.desc->name) in.fail("pass '" + name + "' where the scene has '" + p.desc->name + "'");
+        in.column<double>();  // properties it ran with
+        const bool has_state = in.u8() != 0;
+        const plab_pass_state_hooks* hooks = w.host_->pass_state(name);
+        if (!has_state) {
+            if (hooks)
+                in.fail("pass '" + name + "' now keeps private state (" + w.host_->library_of_pass(name) +
+                        ") but the file has none for it; it was written by an older build of that plug-in");
+            continue;
+        }
+        const std::vector<unsigned char> bytes = in.column<unsigned char>();
+        if (!hooks)
+            in.fail("the file holds private state of pass '" + name + "' but the loaded library " +
+                    w.host_->library_of_pass(name) + " registers no state hooks for it (plab_pass_state_hooks)");
+        if (hooks->load(p.state, bytes.data(), bytes.size()) != 0)
+            in.fail("pass '" + name + "' (" + w.host_->library_of_pass(name) + ") refused its saved state of " +
+                    std::to_string(bytes.size()) + " bytes (written by another version of the plug-in?)");
+    }
+}
+
+void WorldCheckpoint::load_log(World& w, CheckpointReader& in) {
+    in.section("bond_breaks");
+    w.bond_breaks.resize(in.u64());
+    for (BondBreak& b : w.bond_breaks) {
+        b.step = in.u64();
+        b.time = in.f64();
+        b.id1 = in.u64();
+        b.id2 = in.u64();
+        b.point = in.vec();
+        b.mode = int(in.u32());
+        b.model = in.str();
+    }
+
+    in.section("rng");
+    if (in.u64() != 0) in.fail("it holds random-number generator states this build has no use for");
+}
+
+// Sections in file order; bodies and walls come between the assignment
+// table and the fields.
+void WorldCheckpoint::save(const World& w, CheckpointWriter& out) {
+    save_scalars(w, out);
+    save_bodies(w.bodies, out);
+    save_walls(w.walls, out);
+    save_fields(w, out);
+    save_contacts(w, out);
+    save_detection(w, out);
+    save_passes(w, out);
+    save_log(w, out);
+}
+
+void WorldCheckpoint::load(World& w, CheckpointReader& in) {
+    load_scalars(w, in);
+    load_bodies(w.bodies, in);
+    for (int g : w.bodies.group)
+        if (g < 0 || std::size_t(g) >= w.groups_.size()) in.fail("a body has group index " + std::to_string(g));
+    load_walls(w.walls, w, in);
+    load_fields(w, in);
+    load_contacts(w, in);
+    load_detection(w, in);
+    load_passes(w, in);
+    load_log(w, in);
+
+    w.nominal_valid_ = false;  // recomputed from the state, as the uninterrupted run did
+    w.snapshot_.valid = false;
+    w.build_entries();
+}
+
+} // namespace plab

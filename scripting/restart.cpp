@@ -1,0 +1,227 @@
+// Checkpoint and restart of a whole run (docs/restart.md): the plug-ins it
+// needs, the scene it was started from, the world's state
+// (plab_core/checkpoint.cpp), the command sequence with the progress of the
+// current command, and the output counters. A restart rebuilds the scene's
+// structure (plug-ins, groups, model instances, passes, commands) from the
+// stored scene with any --set applied, then replaces the state by the file's.
+#include "simulation.hpp"
+
+#include <plab_core/checkpoint.hpp>
+
+#include <csignal>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace plab {
+
+namespace {
+
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
+
+// The plug-in libraries a run used: scene name, file, ABI version, and what
+// the world takes from each (so a missing one is named with its purpose).
+struct PluginUse {
+    std::string name, file;
+    std::uint32_t abi = 0;
+    std::string provides;
+};
+
+std::vector<PluginUse> plugins_used(const json& scene, const std::string& scene_dir, const PluginHost& host,
+                                    const World& w) {
+    std::vector<PluginUse> out;
+    if (!scene.contains("plugins")) return out;
+    for (const auto& p : scene["plugins"]) {
+        PluginUse u;
+        u.name = p.get<std::string>();
+        u.file = host.resolve(u.name, scene_dir);
+        u.abi = PLAB_ABI_VERSION;  // the host loads no other
+        for (const auto& lib : host.libraries())
+            if (fs::equivalent(lib.path, u.file)) {
+                for (const auto& m : lib.models) u.provides += (u.provides.empty() ? "" : ", ") + ("model " + m);
+                for (const auto& q : lib.passes) u.provides += (u.provides.empty() ? "" : ", ") + ("pass " + q);
+            }
+        out.push_back(u);
+    }
+    (void)w;
+    return out;
+}
+
+// Loads every plug-in the checkpoint names, or says which one is missing
+// and what the saved state needs it for.
+void load_plugins_of(CheckpointReader& in, PluginHost& host, const std::string& scene_dir) {
+    in.section("plugins");
+    const std::uint64_t n = in.u64();
+    for (std::uint64_t i = 0; i < n; ++i) {
+        PluginUse u;
+        u.name = in.str();
+        u.file = in.str();
+        u.abi = in.u32();
+        u.provides = in.str();
+        const std::string what = "plug-in '" + u.name + "' (" + (u.provides.empty() ? "no models" : u.provides) +
+                                 "; written with " + u.file + ", plug-in ABI " + std::to_string(u.abi) + ")";
+        if (u.abi != PLAB_ABI_VERSION)
+            in.fail("it needs " + what + " but this plab speaks plug-in ABI " + std::to_string(PLAB_ABI_VERSION));
+        std::string file;
+        try {
+            file = host.resolve(u.name, scene_dir);
+        } catch (const PluginError& e) {
+            in.fail("it needs " + what + ", which is not found now: " + e.what());
+        }
+        try {
+            host.load(file);
+        } catch (const PluginError& e) {
+            in.fail("it needs " + what + ", which does not load now: " + e.what());
+        }
+    }
+}
+
+} // namespace
+
+void install_stop_handlers() {
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+}
+int stop_signal() { return g_stop_signal; }
+void request_stop(int signal) { g_stop_signal = signal; }
+void clear_stop() { g_stop_signal = 0; }
+
+std::string Simulation::checkpoint_path() const { return (fs::path(out_dir_) / "checkpoint.plab").string(); }
+
+void Simulation::set_checkpoint_every(double seconds) {
+    checkpoint_every_ = seconds;
+    next_checkpoint_time_ = world_->time + seconds;
+}
+
+void Simulation::save_checkpoint(const std::string& path) const { write_file_atomically(path, checkpoint_bytes()); }
+
+std::string Simulation::last_good_path() const { return (fs::path(out_dir_) / "last_good.plab").string(); }
+
+// Every `snapshot_interval` steps the run keeps its checkpoint in memory, at
+// the state the world's own last-good snapshot holds; when the run goes
+// unstable it is written out, to restart from with a smaller timestep.
+void Simulation::keep_last_good() {
+    const World& w = *world_;
+    if (out_dir_.empty() || w.snapshot_interval == 0) return;
+    if (last_good_.empty() || w.step_count % w.snapshot_interval == 0) last_good_ = checkpoint_bytes();
+}
+
+std::string Simulation::write_last_good() const {
+    if (last_good_.empty()) return "";
+    write_file_atomically(last_good_path(), last_good_);
+    return last_good_path();
+}
+
+std::string Simulation::checkpoint_bytes() const {
+    CheckpointWriter out;
+    const auto used = plugins_used(scene_, scene_dir_, *host_, *world_);
+    out.section("plugins");
+    out.u64(used.size());
+    for (const PluginUse& u : used) {
+        out.str(u.name);
+        out.str(u.file);
+        out.u32(u.abi);
+        out.str(u.provides);
+    }
+    out.section("scene");
+    out.str(scene_dir_);
+    out.str(out_dir_);
+    out.str(scene_.dump());
+
+    WorldCheckpoint::save(*world_, out);
+
+    out.section("commands");
+    out.u64(commands_.size());
+    out.u64(next_command_);
+    out.u8(command_started_);
+    out.u64(command_start_step_);
+    out.f64(command_end_time_);
+    out.u64(command_breaks_before_);
+
+    out.section("outputs");
+    out.u64(history_cols_.size());
+    for (const auto& c : history_cols_) out.str(c.name);
+    out.u64(history_rows_.size());
+    for (const auto& row : history_rows_) out.column(row);
+    out.u64(std::uint64_t(vtk_frames_));
+    out.f64(next_vtk_time_);
+    out.u64(vtk_series_.size());
+    for (const auto& [t, name] : vtk_series_) {
+        out.f64(t);
+        out.str(name);
+    }
+    out.u64(std::uint64_t(png_frames_));
+    out.f64(next_png_time_);
+    out.f64(checkpoint_every_);
+    out.f64(next_checkpoint_time_);
+    out.section("end");
+    return out.bytes();
+}
+
+std::unique_ptr<Simulation> Simulation::restart(const std::string& path, const std::vector<std::string>& sets,
+                                                std::shared_ptr<PluginHost> host) {
+    if (!host) host = std::make_shared<PluginHost>();
+    CheckpointReader in(path);
+    // the scene section comes after the plug-ins: read ahead for its folder
+    // (relative plug-in paths resolve against it)
+    CheckpointReader ahead(path);
+    ahead.section("plugins");
+    for (std::uint64_t n = ahead.u64(), i = 0; i < n; ++i) { ahead.str(); ahead.str(); ahead.u32(); ahead.str(); }
+    ahead.section("scene");
+    const std::string scene_dir = ahead.str();
+    load_plugins_of(in, *host, scene_dir);
+
+    in.section("scene");
+    in.str();
+    const std::string out_dir = in.str();
+    json scene;
+    try {
+        scene = json::parse(in.str());
+    } catch (const json::exception& e) {
+        in.fail(std::string("the stored scene does not parse: ") + e.what());
+    }
+    for (const auto& s : sets) apply_override(scene, s);
+    auto sim = std::make_unique<Simulation>(scene, scene_dir, host);
+    sim->out_dir_ = out_dir;
+
+    WorldCheckpoint::load(sim->world(), in);
+
+    in.section("commands");
+    if (in.u64() != sim->commands_.size())
+        in.fail("the scene now has " + std::to_string(sim->commands_.size()) +
+                " commands, the run had a different number (a --set changed the command list?)");
+    sim->next_command_ = in.u64();
+    sim->command_started_ = in.u8() != 0;
+    sim->command_start_step_ = in.u64();
+    sim->command_end_time_ = in.f64();
+    sim->command_breaks_before_ = in.u64();
+    if (sim->next_command_ > sim->commands_.size()) in.fail("the next command is past the end of the list");
+
+    in.section("outputs");
+    std::vector<std::string> columns(in.u64());
+    for (auto& c : columns) c = in.str();
+    std::vector<std::string> now;
+    for (const auto& c : sim->history_cols_) now.push_back(c.name);
+    const std::uint64_t n_rows = in.u64();
+    std::vector<std::vector<double>> rows;
+    for (std::uint64_t r = 0; r < n_rows; ++r) rows.push_back(in.column<double>());
+    if (columns == now) sim->history_rows_ = std::move(rows);  // else the histories start anew (a --set changed them)
+    sim->vtk_frames_ = int(in.u64());
+    sim->next_vtk_time_ = in.f64();
+    sim->vtk_series_.resize(in.u64());
+    for (auto& [t, name] : sim->vtk_series_) {
+        t = in.f64();
+        name = in.str();
+    }
+    sim->png_frames_ = int(in.u64());
+    sim->next_png_time_ = in.f64();
+    sim->checkpoint_every_ = in.f64();
+    sim->next_checkpoint_time_ = in.f64();
+    in.section("end");
+    sim->resumed_ = true;
+    return sim;
+}
+
+} // namespace plab
