@@ -358,6 +358,14 @@ void WorldCheckpoint::save_log(const World& w, CheckpointWriter& out) {
     // theirs, seeded, when the scene loads): no generator state to carry.
     out.section("rng");
     out.u64(0);
+
+    // the detector compares the energy balance with the one at the last
+    // change of the scene: without it a restart would see a jump (issue 7)
+    out.section("stability");
+    const auto& b = w.baseline_;
+    for (double v : {b.balance, b.body, b.boundary, b.dissipated, b.stored, b.potential, b.max_work}) out.f64(v);
+    out.vec(b.lo);
+    out.vec(b.hi);
 }
 
 void WorldCheckpoint::load_scalars(World& w, CheckpointReader& in) {
@@ -495,6 +503,17 @@ void WorldCheckpoint::load_log(World& w, CheckpointReader& in) {
 
     in.section("rng");
     if (in.u64() != 0) in.fail("it holds random-number generator states this build has no use for");
+
+    if (in.format() < 2) {  // no detector baseline saved: measure it at this state
+        w.set_stability_baseline();
+        return;
+    }
+    in.section("stability");
+    auto& b = w.baseline_;
+    for (double* v : {&b.balance, &b.body, &b.boundary, &b.dissipated, &b.stored, &b.potential, &b.max_work})
+        *v = in.f64();
+    b.lo = in.vec();
+    b.hi = in.vec();
 }
 
 // Sections in file order; bodies and walls come between the assignment

@@ -20,7 +20,10 @@
 namespace plab {
 
 // Format versions this build writes and reads.
-constexpr std::uint32_t kCheckpointFormat = 1;
+//   1  the first
+//   2  adds the section "stability": the instability detector's energy and
+//      domain baseline (a version-1 file re-measures it at the restart step)
+constexpr std::uint32_t kCheckpointFormat = 2;
 constexpr std::uint32_t kCheckpointOldestFormat = 1;
 
 // A checkpoint that cannot be written or loaded; the message says why.
