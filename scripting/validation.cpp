@@ -1,7 +1,11 @@
 #include "validation.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 
 #ifndef PLAB_SOURCE_DIR
 #define PLAB_SOURCE_DIR "."
@@ -36,6 +40,32 @@ std::string reference_dir() {
 
 std::string examples_dir() {
     return (std::filesystem::path(PLAB_SOURCE_DIR) / "examples").string();
+}
+
+std::vector<std::vector<std::string>> reference_rows(const std::string& file) {
+    const std::string path = reference_dir() + "/" + file;
+    std::ifstream f(path);
+    if (!f) throw std::runtime_error("reference data not found: " + path + " (set PLAB_REFERENCE_DIR)");
+    std::vector<std::vector<std::string>> rows;
+    bool header = true;
+    for (std::string line; std::getline(f, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        if (header) { header = false; continue; }
+        std::vector<std::string> cells;
+        std::stringstream ss(line);
+        for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+        rows.push_back(std::move(cells));
+    }
+    return rows;
+}
+
+double sample_history(const std::vector<double>& ts, const std::vector<double>& xs, double t) {
+    auto it = std::lower_bound(ts.begin(), ts.end(), t);
+    if (it == ts.begin()) return xs.front();
+    if (it == ts.end()) return xs.back();
+    const std::size_t k = std::size_t(it - ts.begin());
+    const double a = (t - ts[k - 1]) / (ts[k] - ts[k - 1]);
+    return xs[k - 1] + a * (xs[k] - xs[k - 1]);
 }
 
 } // namespace plab

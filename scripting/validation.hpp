@@ -46,6 +46,15 @@ std::string reference_dir();
 // Directory of the repository's examples (PLAB_EXAMPLES_DIR at build time).
 std::string examples_dir();
 
+// The data rows of a reference CSV in reference_dir(), split into cells:
+// comment lines (#), blank lines and the one header line are skipped.
+// Throws, naming the path, when the file is missing.
+std::vector<std::vector<std::string>> reference_rows(const std::string& file);
+
+// A sampled history (ts ascending) at time t: linear between samples, the
+// end value outside them.
+double sample_history(const std::vector<double>& ts, const std::vector<double>& xs, double t);
+
 } // namespace plab
 
 #define PLAB_CAT2(a, b) a##b

@@ -90,20 +90,11 @@ namespace {
 
 // Reference points (T, Z) with T ≤ t_max, every series.
 std::vector<std::pair<double, double>> martin_moyce(double t_max) {
-    const std::string path = reference_dir() + "/martin_moyce_1952_surge.csv";
-    std::ifstream f(path);
-    if (!f) throw std::runtime_error("reference data not found: " + path + " (set PLAB_REFERENCE_DIR)");
-    std::vector<std::pair<double, double>> points;
-    std::string line;
-    while (std::getline(f, line)) {
-        if (line.empty() || line[0] == '#' || line.rfind("series", 0) == 0) continue;
-        std::stringstream ss(line);
-        std::string series, T, Z;
-        std::getline(ss, series, ',');
-        std::getline(ss, T, ',');
-        std::getline(ss, Z, ',');
-        const double t = std::stod(T);
-        if (t <= t_max) points.emplace_back(t, std::stod(Z));
+    std::vector<std::pair<double, double>> points;  // columns: series, T, Z, t_orig_s
+    for (const auto& c : reference_rows("martin_moyce_1952_surge.csv")) {
+        if (c.size() < 3) continue;
+        const double t = std::stod(c[1]);
+        if (t <= t_max) points.emplace_back(t, std::stod(c[2]));
     }
     return points;
 }

@@ -47,32 +47,12 @@ double gate_top(double R) { return gate_l + 3 * std::sqrt(3.0) * R; }
 struct RefPoint { double t, value; };
 
 std::vector<RefPoint> antoci(const std::string& component) {
-    const std::string path = reference_dir() + "/antoci_2007_gate_tip.csv";
-    std::ifstream f(path);
-    if (!f) throw std::runtime_error("reference data not found: " + path + " (set PLAB_REFERENCE_DIR)");
-    std::vector<RefPoint> out;
-    std::string line;
-    while (std::getline(f, line)) {
-        if (line.empty() || line[0] == '#' || line.rfind("source", 0) == 0) continue;
-        std::stringstream ss(line);
-        std::string src, comp, t, v;
-        std::getline(ss, src, ',');
-        std::getline(ss, comp, ',');
-        std::getline(ss, t, ',');
-        std::getline(ss, v, ',');
-        if (src == "fsi_etvf" && comp == component) out.push_back({std::stod(t), std::stod(v)});
-    }
+    std::vector<RefPoint> out;  // columns: source, component, t_s, displacement_m
+    for (const auto& c : reference_rows("antoci_2007_gate_tip.csv"))
+        if (c.size() >= 4 && c[0] == "fsi_etvf" && c[1] == component) out.push_back({std::stod(c[2]), std::stod(c[3])});
     return out;
 }
 
-double sample(const std::vector<double>& ts, const std::vector<double>& xs, double t) {
-    auto it = std::lower_bound(ts.begin(), ts.end(), t);
-    if (it == ts.begin()) return xs.front();
-    if (it == ts.end()) return xs.back();
-    const std::size_t k = std::size_t(it - ts.begin());
-    const double a = (t - ts[k - 1]) / (ts[k] - ts[k - 1]);
-    return xs[k - 1] + a * (xs[k] - xs[k - 1]);
-}
 
 } // namespace
 
@@ -181,14 +161,14 @@ ElasticGateResult elastic_gate(const ElasticGateSpec& s) {
     for (const RefPoint& p : ref_x) {
         if (p.value > peak_ref) { peak_ref = p.value; peak_ref_t = p.t; }
         if (p.t > w.time) continue;
-        const double d = sample(r.t, r.dx, p.t) - p.value;
+        const double d = sample_history(r.t, r.dx, p.t) - p.value;
         sx += d * d;
         ++nx;
     }
     for (const RefPoint& p : ref_y) {
         peak_y_ref = std::max(peak_y_ref, p.value);
         if (p.t > w.time) continue;
-        const double d = sample(r.t, r.dy, p.t) - p.value;
+        const double d = sample_history(r.t, r.dy, p.t) - p.value;
         sy += d * d;
         ++ny;
     }

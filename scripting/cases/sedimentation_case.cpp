@@ -44,40 +44,19 @@ struct RefPoint { double t, value; };
 
 // Points of one series and quantity of the reference file.
 std::vector<RefPoint> reference(const std::string& series, const std::string& quantity) {
-    const std::string path = reference_dir() + "/glowinski_2001_falling_cylinder.csv";
-    std::ifstream f(path);
-    if (!f) throw std::runtime_error("reference data not found: " + path + " (set PLAB_REFERENCE_DIR)");
-    std::vector<RefPoint> out;
-    std::string line;
-    while (std::getline(f, line)) {
-        if (line.empty() || line[0] == '#' || line.rfind("series", 0) == 0) continue;
-        std::stringstream ss(line);
-        std::string name, q, t, v;
-        std::getline(ss, name, ',');
-        std::getline(ss, q, ',');
-        std::getline(ss, t, ',');
-        std::getline(ss, v, ',');
-        if (name == series && q == quantity) out.push_back({std::stod(t), std::stod(v)});
-    }
+    std::vector<RefPoint> out;  // columns: series, quantity, t_s, value
+    for (const auto& c : reference_rows("glowinski_2001_falling_cylinder.csv"))
+        if (c.size() >= 4 && c[0] == series && c[1] == quantity) out.push_back({std::stod(c[2]), std::stod(c[3])});
     return out;
 }
 
-// Linear interpolation of a sampled history at time t.
-double sample(const std::vector<double>& ts, const std::vector<double>& xs, double t) {
-    auto it = std::lower_bound(ts.begin(), ts.end(), t);
-    if (it == ts.begin()) return xs.front();
-    if (it == ts.end()) return xs.back();
-    const std::size_t k = std::size_t(it - ts.begin());
-    const double a = (t - ts[k - 1]) / (ts[k] - ts[k - 1]);
-    return xs[k - 1] + a * (xs[k] - xs[k - 1]);
-}
 
 double rms_against(const std::vector<RefPoint>& ref, const std::vector<double>& ts, const std::vector<double>& xs) {
     double sum = 0;
     int n = 0;
     for (const RefPoint& p : ref) {
         if (p.t > ts.back()) continue;
-        const double d = sample(ts, xs, p.t) - p.value;
+        const double d = sample_history(ts, xs, p.t) - p.value;
         sum += d * d;
         ++n;
     }
