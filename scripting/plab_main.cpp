@@ -65,62 +65,61 @@ int run_and_report(Simulation& sim, bool quiet, const std::string& out) {
     return 0;
 }
 
-int cmd_restart(const std::vector<std::string>& args) {
+// The options `plab run` and `plab restart` share; `what` names the one
+// positional argument (a scene or a checkpoint).
+struct RunOptions {
     std::string path, out;
     std::vector<std::string> sets;
     bool quiet = false;
     double every = 0;
+};
+
+RunOptions parse_run_options(const std::vector<std::string>& args, const std::string& what) {
+    RunOptions o;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (a == "--set" && i + 1 < args.size()) sets.push_back(args[++i]);
-        else if (a == "--out" && i + 1 < args.size()) out = args[++i];
-        else if (a == "--checkpoint-every" && i + 1 < args.size()) every = checkpoint_interval(args[++i]);
-        else if (a == "--quiet") quiet = true;
+        if (a == "--set" && i + 1 < args.size()) o.sets.push_back(args[++i]);
+        else if (a == "--out" && i + 1 < args.size()) o.out = args[++i];
+        else if (a == "--checkpoint-every" && i + 1 < args.size()) o.every = checkpoint_interval(args[++i]);
+        else if (a == "--quiet") o.quiet = true;
         else if (a.rfind("--", 0) == 0) throw InputError("command line", "unknown option " + a + "\n" + usage);
-        else if (path.empty()) path = a;
-        else throw InputError("command line", "more than one checkpoint given (" + path + ", " + a + ")");
+        else if (o.path.empty()) o.path = a;
+        else throw InputError("command line", "more than one " + what + " given (" + o.path + ", " + a + ")");
     }
-    if (path.empty()) throw InputError("command line", std::string("no checkpoint given\n") + usage);
+    if (o.path.empty()) throw InputError("command line", "no " + what + " given\n" + usage);
+    return o;
+}
+
+int cmd_restart(const std::vector<std::string>& args) {
+    const RunOptions o = parse_run_options(args, "checkpoint");
     std::unique_ptr<Simulation> sim;
     try {
-        sim = Simulation::restart(path, sets);
+        sim = Simulation::restart(o.path, o.sets);
     } catch (const CheckpointError& e) {
         std::cerr << "error: cannot restart: " << e.what() << "\n";
         return 2;
     }
-    sim->set_quiet(quiet);
-    if (!out.empty()) sim->set_output_dir(out);
-    if (every > 0) sim->set_checkpoint_every(every);
-    return run_and_report(*sim, quiet, sim->output_dir());
+    sim->set_quiet(o.quiet);
+    if (!o.out.empty()) sim->set_output_dir(o.out);
+    if (o.every > 0) sim->set_checkpoint_every(o.every);
+    return run_and_report(*sim, o.quiet, sim->output_dir());
 }
 
 int cmd_run(const std::vector<std::string>& args) {
-    std::string scene_path, out;
-    std::vector<std::string> sets;
-    bool quiet = false;
-    double every = 0;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--set" && i + 1 < args.size()) sets.push_back(args[++i]);
-        else if (a == "--checkpoint-every" && i + 1 < args.size()) every = checkpoint_interval(args[++i]);
-        else if (a == "--out" && i + 1 < args.size()) out = args[++i];
-        else if (a == "--quiet") quiet = true;
-        else if (a.rfind("--", 0) == 0) throw InputError("command line", "unknown option " + a + "\n" + usage);
-        else if (scene_path.empty()) scene_path = a;
-        else throw InputError("command line", "more than one scene given (" + scene_path + ", " + a + ")");
-    }
-    if (scene_path.empty()) throw InputError("command line", std::string("no scene given\n") + usage);
+    const RunOptions o = parse_run_options(args, "scene");
+    const std::string& scene_path = o.path;
+    std::string out = o.out;
     json scene = read_scene_file(scene_path);
-    for (const auto& s : sets) apply_override(scene, s);
+    for (const auto& s : o.sets) apply_override(scene, s);
     const std::string scene_dir = fs::absolute(scene_path).parent_path().string();
     Simulation sim(scene, scene_dir);
-    sim.set_quiet(quiet);
+    sim.set_quiet(o.quiet);
     // --out wins, then the scene's output.dir, then plab_out/<scene name>
     if (out.empty() && !(scene.contains("output") && scene["output"].contains("dir")))
         out = "plab_out/" + fs::path(scene_path).stem().string();
     if (!out.empty()) sim.set_output_dir(out);
-    if (every > 0) sim.set_checkpoint_every(every);
-    return run_and_report(sim, quiet, sim.output_dir());
+    if (o.every > 0) sim.set_checkpoint_every(o.every);
+    return run_and_report(sim, o.quiet, sim.output_dir());
 }
 
 double default_range(const plab_contact_model_desc& d) {
