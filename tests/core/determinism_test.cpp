@@ -1,6 +1,7 @@
 // The reduction is deterministic: the same scene gives bit-identical states
 // whatever the thread count (issue: kernel, plug-in host).
 #include "simulation.hpp"
+#include "settling_scene.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -12,24 +13,14 @@ using namespace plab;
 
 namespace {
 
-json settling_scene(int dim) {
-    auto v = [dim](double x, double y, double z) { return dim == 2 ? json::array({x, y}) : json::array({x, y, z}); };
-    return {{"dimension", dim},
-            {"plugins", {"linear"}},
-            {"gravity", v(0, -9.81, 0)},
-            {"bodies", {{{"type", "random_fill"}, {"group", "grains"}, {"box", {{"min", v(0, 0, 0)}, {"max", v(0.1, 0.1, 0.1)}}},
-                         {"radius", {0.002, 0.004}}, {"density", 2500}, {"count", dim == 2 ? 150 : 600}, {"seed", 3}}}},
-            {"walls", {{{"type", "box"}, {"min", v(0, 0, 0)}, {"max", v(0.1, 0.2, 0.1)}}}},
-            {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"},
-                                 {"properties", {{"kn", 1e4}, {"ks", 5e3}, {"fric", 0.5}, {"dp_nratio", 0.2}}}}}}};
-}
+json pile(int dim) { return settling_scene(dim, dim == 2 ? 150 : 600); }
 
 std::uint64_t run_with_threads(int dim, int threads, long steps) {
 #ifdef _OPENMP
     omp_set_num_threads(threads);
     REQUIRE(omp_get_max_threads() == threads);  // (the suite runs with OMP_NUM_THREADS=1)
 #endif
-    Simulation sim(settling_scene(dim));
+    Simulation sim(pile(dim));
     sim.set_quiet(true);
     sim.world().parallel_min = 0;  // thread every loop, however short
     sim.cycle(steps);

@@ -4,6 +4,7 @@
 // pile, a bonded plate whose bonds break, and an SPH tank, with 1 and 2
 // threads. A checkpoint that cannot load says exactly why.
 #include "simulation.hpp"
+#include "settling_scene.hpp"
 
 #include <plab_core/checkpoint.hpp>
 
@@ -48,17 +49,7 @@ fs::path scratch(const std::string& name) {
     return dir / name;
 }
 
-json settling_scene(int dim = 2) {
-    auto v = [dim](double x, double y, double z) { return dim == 2 ? json::array({x, y}) : json::array({x, y, z}); };
-    return {{"dimension", dim},
-            {"plugins", {"linear"}},
-            {"gravity", v(0, -9.81, 0)},
-            {"bodies", {{{"type", "random_fill"}, {"group", "grains"}, {"box", {{"min", v(0, 0, 0)}, {"max", v(0.1, 0.1, 0.1)}}},
-                         {"radius", {0.002, 0.004}}, {"density", 2500}, {"count", dim == 2 ? 150 : 250}, {"seed", 3}}}},
-            {"walls", {{{"type", "box"}, {"min", v(0, 0, 0)}, {"max", v(0.1, 0.2, 0.1)}}}},
-            {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"},
-                                 {"properties", {{"kn", 1e4}, {"ks", 5e3}, {"fric", 0.5}, {"dp_nratio", 0.2}}}}}}};
-}
+json pile(int dim = 2) { return settling_scene(dim, dim == 2 ? 150 : 250); }
 
 // A 2D brittle plate hit by a steel ball; the bonds are made before the run.
 json plate_scene() {
@@ -137,8 +128,8 @@ TEST_CASE("a settling pile restarted at step k reaches the uninterrupted state a
             INFO(dim << "D, " << threads << " threads");
             use_threads(threads);
             const long n = dim == 2 ? 700 : 300, k = dim == 2 ? 437 : 151;
-            const Outcome whole = uninterrupted(settling_scene(dim), false, n);
-            const Outcome resumed = interrupted(settling_scene(dim), false, k, n, "pile.plab");
+            const Outcome whole = uninterrupted(pile(dim), false, n);
+            const Outcome resumed = interrupted(pile(dim), false, k, n, "pile.plab");
             CHECK(resumed.hash == whole.hash);
         }
 }
@@ -187,7 +178,7 @@ TEST_CASE("a coupled SPH-DEM scene (sedimentation) restarts bit-identically, 1 a
 
 TEST_CASE("a run stopped by a signal mid-command writes a checkpoint from which the commands finish identically",
           "[restart]") {
-    json scene = settling_scene();
+    json scene = pile();
     scene["histories"] = {{"every", 50}, {"record", {{{"quantity", "time"}}, {{"name", "ke"}, {"quantity", "energy.kinetic"}}}}};
     scene["commands"] = {{{"cycle", 300}}, {{"set", {{"gravity", {0, -4.0}}}}}, {{"solve", {{"time", 0.02}}}}};
     const fs::path whole_dir = scratch("whole"), cut_dir = scratch("cut");
@@ -220,7 +211,7 @@ TEST_CASE("a run stopped by a signal mid-command writes a checkpoint from which 
 }
 
 TEST_CASE("periodic checkpoints of a run restart to the same final state", "[restart]") {
-    json scene = settling_scene();
+    json scene = pile();
     scene["timestep"] = {{"fixed", 5e-4}};  // 500 steps: the grains land and touch
     scene["commands"] = {{{"cycle", 500}}};
     Simulation whole(scene);
@@ -270,7 +261,7 @@ TEST_CASE("a checkpoint that cannot load says why: foreign, newer, truncated, mi
           "[restart][errors]") {
     const fs::path good = scratch("good.plab");
     {
-        auto sim = start(settling_scene(), false);
+        auto sim = start(pile(), false);
         sim->cycle(20);
         sim->save_checkpoint(good.string());
     }
@@ -306,7 +297,7 @@ TEST_CASE("a checkpoint that cannot load says why: foreign, newer, truncated, mi
 
 TEST_CASE("a run that goes unstable leaves its last good state as a checkpoint that a smaller timestep finishes",
           "[restart][stability]") {
-    json scene = settling_scene();
+    json scene = pile();
     // planes hold the grains in, so a timestep 3x the stable limit blows up
     // instead of letting them fly away
     scene["walls"] = {{{"type", "plane"}, {"point", {0, 0}}, {"normal", {0, 1}}},
