@@ -69,8 +69,7 @@ void World::geometry(ModelInstance& inst, ContactSet& s) {
             }
             normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
             mj = B.mass[j];
-            const double gap = dist - ri - rj;
-            point = xi + normal * (ri + 0.5 * gap);  // middle of the overlap
+            point = xi + normal * (ri + 0.5 * gap_only);  // middle of the overlap
             v_other = B.velocity[j] + B.angular_velocity[j].cross(point - B.position[j]);
             w_other = B.angular_velocity[j];
         }
