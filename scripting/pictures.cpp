@@ -274,6 +274,7 @@ namespace {
 struct PlotAxis {
     double lo = 0, hi = 1;
     bool log = false;
+    double step = 1;  // linear: the tick spacing the range was rounded to
     double at(double v) const {
         return log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)) : (v - lo) / (hi - lo);
     }
@@ -281,7 +282,6 @@ struct PlotAxis {
     std::vector<double> ticks() const {
         std::vector<double> t;
         if (!log) {
-            const double step = nice_step(hi - lo, 6);
             for (double v = lo; v <= hi + 0.5 * step; v += step) t.push_back(std::fabs(v) < 1e-12 * step ? 0.0 : v);
             return t;
         }
@@ -296,7 +296,7 @@ struct PlotAxis {
 
 // The axis over [lo, hi] (the data's range), rounded out to nice ticks.
 PlotAxis make_axis(double lo, double hi, bool log) {
-    PlotAxis a{lo, hi, log};
+    PlotAxis a{lo, hi, log, 1.0};
     if (log) {
         if (!(lo > 0 && std::isfinite(lo))) { a.lo = 1; a.hi = 10; return a; }
         a.lo = std::pow(10.0, std::floor(std::log10(lo) + 1e-9));
@@ -305,9 +305,9 @@ PlotAxis make_axis(double lo, double hi, bool log) {
         return a;
     }
     if (!(hi > lo)) { a.lo = std::isfinite(lo) ? lo - 1 : 0; a.hi = a.lo + 2; }
-    const double step = nice_step(a.hi - a.lo, 6);
-    a.lo = std::floor(a.lo / step) * step;
-    a.hi = std::ceil(a.hi / step) * step;
+    a.step = nice_step(a.hi - a.lo, 6);
+    a.lo = std::floor(a.lo / a.step) * a.step;
+    a.hi = std::ceil(a.hi / a.step) * a.step;
     return a;
 }
 
@@ -410,7 +410,9 @@ void draw_legend(cairo_t* cr, const Plot& plot, const PlotFrame& f) {
     for (std::size_t c = 0; c < plot.curves.size(); ++c) {
         const Curve& cv = plot.curves[c];
         const Rgb col = category(int(c));
-        const double lx = f.L + 12, ly = f.T + 18 + 18.0 * c;
+        const double lx = f.L + 12;
+        const double ly = plot.legend_bottom ? f.H - f.B - 10 - 18.0 * double(plot.curves.size() - 1 - c)
+                                             : f.T + 18 + 18.0 * double(c);
         cairo_set_source_rgb(cr, col.r, col.g, col.b);
         if (!cv.markers || cv.joined) {
             cairo_set_line_width(cr, 2);

@@ -300,10 +300,9 @@ void write_results(const Options& o, const std::vector<Point>& points) {
     std::printf("\n%zu runs; CSV in %s/sweep.csv; pareto = no other run is both cheaper (%s) and more accurate (%s)\n",
                 points.size(), o.out.c_str(), o.cost.c_str(), metric.empty() ? "no metric" : metric.c_str());
     if (metric.empty()) return;
-    std::string scenes;
-    for (const auto& sc : o.scenes) scenes += (scenes.empty() ? "" : ", ") + fs::path(sc).stem().string();
     const std::string png = (fs::path(o.out) / "sweep.png").string();
-    write_sweep_png(plotted, "plab sweep " + scenes + ": " + metric + " error against " + o.cost, o.cost,
+    const std::string scene = o.scenes.size() > 1 ? "" : " " + fs::path(o.scenes[0]).stem().string();
+    write_sweep_png(plotted, "plab sweep" + scene + ": " + metric + " error against " + o.cost, o.cost,
                     metric + " relative error", png);
     std::printf("picture of error against cost in %s\n", png.c_str());
 }
