@@ -246,9 +246,11 @@ namespace {
 // A small dam break (column 0.04 x 0.08 m, dp 0.01 m, tank 0.2 m) with
 // boundary balls at dp/2; c0 = `mach_factor` times the largest speed
 // sqrt(2 g H). `jitter` displaces the fluid lattice by up to that fraction of dp.
-json small_dam_break(double mach_factor, double jitter = 0) {
-    const double g = 9.81, a = 0.04, H = 0.08, dp = 0.01, db = dp / 2, h = 1.3 * dp;
-    const double t = std::ceil(2 * h / db) * db, length = 0.2;
+// `scale` multiplies every length (Froude scaling: speeds and times go as
+// its square root).
+json small_dam_break(double mach_factor, double jitter = 0, double scale = 1) {
+    const double g = 9.81, a = 0.04 * scale, H = 0.08 * scale, dp = 0.01 * scale, db = dp / 2, h = 1.3 * dp;
+    const double t = std::ceil(2 * h / db) * db, length = 0.2 * scale;
     const double c0 = mach_factor * std::sqrt(2 * g * H);
     const json sph = {{"smoothing_length", h}, {"kernel", 0}, {"speed_of_sound", c0}, {"viscosity", 1}, {"alpha", 0.1}};
     auto block = [db](double x0, double y0, double x1, double y1) { return cases::boundary_block(x0, y0, x1, y1, db); };
@@ -317,6 +319,29 @@ TEST_CASE("SPH: c0 = 5, 10 and 20 x the largest speed run; 3 x stops on the dens
                               Contains("last good state"));
     CHECK_THAT(o.message, Contains("pass sph_eos: ball id 10") && Contains(" (group fluid) has density"));
     CHECK_THAT(o.message, !Contains("ball index"));
+}
+
+TEST_CASE("SPH: 1e-6 m and 10 m particles make the same dam break in the same units (no hidden length scale)",
+          "[stability][sph]") {
+    // Froude scaling: lengths x s, times and speeds x sqrt(s), c0 = 10 sqrt(2 g H)
+    // scales with them, so x/s at t/sqrt(s) must not depend on s
+    auto front = [](double dp) {
+        const double s = dp / 0.01;
+        Simulation sim(small_dam_break(10, 0, s));
+        sim.set_quiet(true);
+        World& w = sim.world();
+        const Outcome o = run(sim, steps_for(sim, 0.1 * std::sqrt(s)));
+        INFO("dp " << dp << " m: " << o.message);
+        CHECK_FALSE(o.stopped);
+        double x = -kInf;
+        for (std::size_t i = 0; i < w.bodies.size(); ++i)
+            if (w.bodies.group[i] == 0) x = std::max(x, w.bodies.position[i].x());
+        return x / s;
+    };
+    const double x_cm = front(0.01);
+    CHECK(x_cm > 0.04 * 1.5);  // the surge has moved out
+    CHECK(front(1e-6) == Approx(x_cm).epsilon(1e-6));
+    CHECK(front(10.0) == Approx(x_cm).epsilon(1e-6));
 }
 
 TEST_CASE("SPH: a disordered initial lattice (20 % of dp) relaxes without leaving the density band", "[stability][sph]") {
