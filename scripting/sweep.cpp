@@ -289,7 +289,9 @@ void write_results(const Options& o, const std::vector<Point>& points) {
         if (o.scenes.size() > 1) csv << fs::path(o.scenes[p.scene]).stem().string() << ',';
         for (const auto& v : p.values) csv << v << ',';
         const std::string stopped = s.contains("stopped") ? s["stopped"]["quantity"].get<std::string>() : "";
-        csv << (p.status == 0 ? "ok" : p.status == 3 ? "unstable" : "error") << ',' << stopped << ','
+        // plab run exits 3 when the detector stops it, 128 + the signal when it is stopped (SIGTERM)
+        const char* status = p.status == 0 ? "ok" : p.status == 3 ? "unstable" : p.status > 128 ? "interrupted" : "error";
+        csv << status << ',' << stopped << ','
             << number_or_nan(s, "bodies") << ',' << cost_of(p, "steps") << ',' << cost_of(p, "particle_steps") << ','
             << p.wall << ',' << p.cpu << ',' << p.rss_mb << ',' << stable << ',' << contacts;
         for (const auto& name : metric_names) csv << ',' << metric_error(p, name);
