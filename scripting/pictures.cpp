@@ -411,8 +411,7 @@ void draw_legend(cairo_t* cr, const Plot& plot, const PlotFrame& f) {
         const Curve& cv = plot.curves[c];
         const Rgb col = category(int(c));
         const double lx = f.L + 12;
-        const double ly = plot.legend_bottom ? f.H - f.B - 10 - 18.0 * double(plot.curves.size() - 1 - c)
-                                             : f.T + 18 + 18.0 * double(c);
+        const double ly = plot.legend_above ? 40 + 18.0 * double(c) + 12 : f.T + 18 + 18.0 * double(c);
         cairo_set_source_rgb(cr, col.r, col.g, col.b);
         if (!cv.markers || cv.joined) {
             cairo_set_line_width(cr, 2);
@@ -433,8 +432,9 @@ void write_plot_png(const Plot& plot, const std::string& path, int W, int H) {
     const auto [y_lo, y_hi] = data_range(plot, true, plot.log_y);
     bool labelled = false;  // room on the right for the labels of the rightmost points
     for (const Curve& c : plot.curves) labelled = labelled || !c.point_labels.empty();
+    const double top = plot.legend_above ? 40 + 18.0 * double(plot.curves.size()) + 8 : 40;
     const PlotFrame f{make_axis(x_lo, x_hi, plot.log_x), make_axis(y_lo, y_hi, plot.log_y), 80, labelled ? 150.0 : 40.0,
-                      40, 55, W, H};
+                      top, 55, W, H};
     cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
     cairo_t* cr = cairo_create(surface);
     cairo_set_source_rgb(cr, 1, 1, 1);

@@ -23,7 +23,7 @@ struct Plot {
     std::string title, x_label, y_label;
     std::vector<Curve> curves;
     bool log_x = false, log_y = false;  // logarithmic axes: points with a value <= 0 there are not drawn
-    bool legend_bottom = false;         // legend in the lower left corner (else the upper left)
+    bool legend_above = false;          // legend between the title and the axes (else inside, upper left)
 };
 void write_plot_png(const Plot& plot, const std::string& path, int width = 900, int height = 560);
 

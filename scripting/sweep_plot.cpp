@@ -68,7 +68,7 @@ void write_sweep_png(const std::vector<SweepPoint>& points, const std::string& t
     plot.y_label = error_label;
     plot.log_x = wide(runs.x);
     plot.log_y = wide(runs.y);
-    plot.legend_bottom = true;  // cheap and accurate, the lower left, is where no run is
+    plot.legend_above = true;  // any corner of the axes may hold a run
     plot.curves = {best, runs};  // the runs' markers and labels over the front's
     write_plot_png(plot, path, 1000, 620);
 }
