@@ -429,7 +429,7 @@ TEST_CASE("fluid/solid density ratio 0.1, 1 and 10: a heavy disc sinks no faster
     }
 }
 
-TEST_CASE("a heavy disc on a floor contact sized for a light one goes through it and stops on the domain; a stiffer "
+TEST_CASE("a heavy disc on a floor contact sized for a light one goes through it and stops on the domain, and a stiffer "
           "floor holds it", "[stability][coupling]") {
     // rho_s = 10000 reaches ~0.5 m/s: the floor's kn 1e3 N/m lets it overlap v sqrt(m/k) ~ 3 mm > r
     const Settling soft = settle(0.1, 0.3);
