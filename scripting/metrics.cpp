@@ -1,8 +1,10 @@
 // Accuracy metrics a scene declares (`metrics`), evaluated at the end of a
 // run from its recorded histories and written to summary.json, so that
 // `plab sweep` can set error against cost (issue 7). Two kinds:
-//   analytical: a reduction of one history (final, max, min, mean, max_abs)
-//     times `scale`, against an exact value: error = |value - exact| / |exact|;
+//   analytical: a reduction of one history (final, change = final - first,
+//     max, min, mean, max_abs) times `scale`, optionally over the samples
+//     whose time lies in [from, to] (a terminal velocity is the mean over a
+//     plateau), against an exact value: error = |value - exact| / |exact|;
 //   reference:  a history against a reference curve (a CSV in
 //     shared/reference or beside the scene), both scaled to the reference's
 //     variables: error = mean |sim - ref| / |ref| over the reference points
@@ -25,6 +27,7 @@ namespace {
 double reduce(const Node& n, const std::vector<double>& h, const std::string& op) {
     if (h.empty()) n.fail("the history has no samples");
     if (op == "final") return h.back();
+    if (op == "change") return h.back() - h.front();  // a displacement from the first sample
     if (op == "max") return *std::max_element(h.begin(), h.end());
     if (op == "min") return *std::min_element(h.begin(), h.end());
     if (op == "max_abs") {
@@ -76,8 +79,21 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
     return ys[k - 1] + w * (ys[k] - ys[k - 1]);
 }
 
+// The samples of h whose time (the `time_history`) lies in [from, to], s.
+std::vector<double> in_window(const Node& m, const Simulation& sim, const std::vector<double>& h) {
+    const auto t = sim.history(m.string_or("time_history", "time"));
+    const double from = m.number_or("from", -kInf), to = m.number_or("to", kInf);
+    if (!(to > from)) m.at("to").fail("the window [from, to] = [" + std::to_string(from) + ", " + std::to_string(to) +
+                                      "] s is empty; \"to\" must exceed \"from\"");
+    std::vector<double> out;
+    for (std::size_t k = 0; k < h.size() && k < t.size(); ++k)
+        if (t[k] >= from && t[k] <= to) out.push_back(h[k]);
+    return out;  // empty when a run stopped before the window: no error figure, not a scene error
+}
+
 json one_metric(const Node& m, const Simulation& sim, const std::string& scene_dir) {
-    m.allow_keys({"name", "history", "reduce", "scale", "analytical", "time_history", "x_scale", "y_scale", "reference"});
+    m.allow_keys({"name", "history", "reduce", "scale", "analytical", "from", "to", "time_history", "x_scale", "y_scale",
+                  "reference"});
     const std::string name = m.at("name").string();
     const Node hn = m.at("history");
     std::vector<double> h;
@@ -88,7 +104,14 @@ json one_metric(const Node& m, const Simulation& sim, const std::string& scene_d
     }
     json out = {{"name", name}};
     if (m.has("analytical")) {
-        const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "max", "min", "mean", "max_abs"}) : "final";
+        const std::string op =
+            m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "max_abs"}) : "final";
+        if (m.has("from") || m.has("to")) h = in_window(m, sim, h);
+        if (h.empty()) {
+            out["error"] = std::nan("");
+            out["note"] = "no sample inside [from, to]: the run ended before the window";
+            return out;
+        }
         const double value = reduce(m, h, op) * m.number_or("scale", 1.0);
         const double exact = m.at("analytical").number();
         out["value"] = value;

@@ -267,111 +267,194 @@ void write_snapshot_png(const World& w, const SnapshotOptions& opt, const std::s
     cairo_surface_destroy(surface);
 }
 
-void write_plot_png(const Plot& plot, const std::string& path, int W, int H) {
-    double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf;
+namespace {
+
+// One axis of a plot: the drawn range (rounded out to ticks) and whether it
+// is logarithmic. at() maps a value to [0, 1] along the axis.
+struct PlotAxis {
+    double lo = 0, hi = 1;
+    bool log = false;
+    double step = 1;  // linear: the tick spacing the range was rounded to
+    double at(double v) const {
+        return log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)) : (v - lo) / (hi - lo);
+    }
+    bool shows(double v) const { return std::isfinite(v) && (!log || v > 0); }
+    std::vector<double> ticks() const {
+        std::vector<double> t;
+        if (!log) {
+            for (double v = lo; v <= hi + 0.5 * step; v += step) t.push_back(std::fabs(v) < 1e-12 * step ? 0.0 : v);
+            return t;
+        }
+        // decades; over fewer than three decades 2 and 5 as well
+        const bool fine = std::log10(hi / lo) < 3;
+        for (double d = lo; d <= hi * 1.0001; d *= 10)
+            for (double m : {1.0, 2.0, 5.0})
+                if ((m == 1.0 || fine) && m * d <= hi * 1.0001) t.push_back(m * d);
+        return t;
+    }
+};
+
+// The axis over [lo, hi] (the data's range), rounded out to nice ticks.
+PlotAxis make_axis(double lo, double hi, bool log) {
+    PlotAxis a{lo, hi, log, 1.0};
+    if (log) {
+        if (!(lo > 0 && std::isfinite(lo))) { a.lo = 1; a.hi = 10; return a; }
+        a.lo = std::pow(10.0, std::floor(std::log10(lo) + 1e-9));
+        a.hi = std::pow(10.0, std::ceil(std::log10(hi) - 1e-9));
+        if (!(a.hi > a.lo)) a.hi = 10 * a.lo;
+        return a;
+    }
+    if (!(hi > lo)) { a.lo = std::isfinite(lo) ? lo - 1 : 0; a.hi = a.lo + 2; }
+    a.step = nice_step(a.hi - a.lo, 6);
+    a.lo = std::floor(a.lo / a.step) * a.step;
+    a.hi = std::ceil(a.hi / a.step) * a.step;
+    return a;
+}
+
+// The data range of the curves along x (or y, with their error bands).
+std::pair<double, double> data_range(const Plot& plot, bool y, bool log) {
+    double lo = kInf, hi = -kInf;
     for (const Curve& c : plot.curves)
         for (std::size_t k = 0; k < c.x.size() && k < c.y.size(); ++k) {
             if (!std::isfinite(c.x[k]) || !std::isfinite(c.y[k])) continue;
-            x0 = std::min(x0, c.x[k]); x1 = std::max(x1, c.x[k]);
-            y0 = std::min(y0, c.y[k] * (1 - c.band)); y1 = std::max(y1, c.y[k] * (1 + c.band));
-            y0 = std::min(y0, c.y[k] * (1 + c.band)); y1 = std::max(y1, c.y[k] * (1 - c.band));
+            const double v = y ? c.y[k] : c.x[k], band = y ? c.band : 0.0;
+            for (double w : {v * (1 - band), v, v * (1 + band)})
+                if (!log || w > 0) { lo = std::min(lo, w); hi = std::max(hi, w); }
         }
-    if (!(x1 > x0)) { x0 = std::isfinite(x0) ? x0 - 1 : 0; x1 = x0 + 2; }
-    if (!(y1 > y0)) { y0 = std::isfinite(y0) ? y0 - 1 : 0; y1 = y0 + 2; }
-    const double xs = nice_step(x1 - x0, 6), ys = nice_step(y1 - y0, 6);
-    x0 = std::floor(x0 / xs) * xs; x1 = std::ceil(x1 / xs) * xs;
-    y0 = std::floor(y0 / ys) * ys; y1 = std::ceil(y1 / ys) * ys;
-    const double L = 80, R = 40, T = 40, B = 55;
-    auto px = [&](double x) { return L + (x - x0) / (x1 - x0) * (W - L - R); };
-    auto py = [&](double y) { return H - B - (y - y0) / (y1 - y0) * (H - T - B); };
+    return {lo, hi};
+}
 
-    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
-    cairo_t* cr = cairo_create(surface);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_paint(cr);
-    // grid and tick labels
+struct PlotFrame {
+    PlotAxis x, y;
+    double L, R, T, B;
+    int W, H;
+    double px(double v) const { return L + x.at(v) * (W - L - R); }
+    double py(double v) const { return H - B - y.at(v) * (H - T - B); }
+    bool shows(double vx, double vy) const { return x.shows(vx) && y.shows(vy); }
+};
+
+void draw_axes(cairo_t* cr, const Plot& plot, const PlotFrame& f) {
     cairo_set_line_width(cr, 1);
-    for (double x = x0; x <= x1 + 0.5 * xs; x += xs) {
+    for (double x : f.x.ticks()) {
         cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
-        cairo_move_to(cr, px(x), py(y0)); cairo_line_to(cr, px(x), py(y1)); cairo_stroke(cr);
+        cairo_move_to(cr, f.px(x), f.py(f.y.lo)); cairo_line_to(cr, f.px(x), f.py(f.y.hi)); cairo_stroke(cr);
         cairo_set_source_rgb(cr, 0, 0, 0);
-        text(cr, px(x), H - B + 18, number(std::fabs(x) < 1e-12 * xs ? 0.0 : x), 12, 0.5);
+        text(cr, f.px(x), f.H - f.B + 18, number(x), 12, 0.5);
     }
-    for (double y = y0; y <= y1 + 0.5 * ys; y += ys) {
+    for (double y : f.y.ticks()) {
         cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
-        cairo_move_to(cr, px(x0), py(y)); cairo_line_to(cr, px(x1), py(y)); cairo_stroke(cr);
+        cairo_move_to(cr, f.px(f.x.lo), f.py(y)); cairo_line_to(cr, f.px(f.x.hi), f.py(y)); cairo_stroke(cr);
         cairo_set_source_rgb(cr, 0, 0, 0);
-        text(cr, L - 6, py(y) + 4, number(std::fabs(y) < 1e-12 * ys ? 0.0 : y), 12, 1.0);
+        text(cr, f.L - 6, f.py(y) + 4, number(y), 12, 1.0);
     }
     cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_rectangle(cr, L, T, W - L - R, H - T - B);
+    cairo_rectangle(cr, f.L, f.T, f.W - f.L - f.R, f.H - f.T - f.B);
     cairo_stroke(cr);
-    text(cr, W / 2.0, 24, plot.title, 15, 0.5);
-    text(cr, (L + W - R) / 2.0, H - 12, plot.x_label, 13, 0.5);
+    text(cr, f.W / 2.0, 24, plot.title, 15, 0.5);
+    text(cr, (f.L + f.W - f.R) / 2.0, f.H - 12, plot.x_label + (f.x.log ? " (log)" : ""), 13, 0.5);
     cairo_save(cr);
-    cairo_translate(cr, 18, (T + H - B) / 2.0);
+    cairo_translate(cr, 18, (f.T + f.H - f.B) / 2.0);
     cairo_rotate(cr, -M_PI / 2);
-    text(cr, 0, 0, plot.y_label, 13, 0.5);
+    text(cr, 0, 0, plot.y_label + (f.y.log ? " (log)" : ""), 13, 0.5);
     cairo_restore(cr);
+}
 
-    // curves: error bands first, then lines, then reference markers
-    cairo_rectangle(cr, L, T, W - L - R, H - T - B);
-    cairo_clip(cr);
-    for (std::size_t c = 0; c < plot.curves.size(); ++c) {
-        const Curve& cv = plot.curves[c];
-        if (cv.band <= 0) continue;
-        const Rgb col = category(int(c));
+// Error bands: an error bar on each marker, a shaded band along a line.
+void draw_band(cairo_t* cr, const Curve& cv, const Rgb& col, const PlotFrame& f) {
+    if (cv.markers) {
         cairo_set_source_rgba(cr, col.r, col.g, col.b, 0.35);
-        if (cv.markers) {  // scattered points (several series, unsorted): an error bar each
-            cairo_set_line_width(cr, 5);
-            for (std::size_t k = 0; k < cv.x.size(); ++k) {
-                cairo_move_to(cr, px(cv.x[k]), py(cv.y[k] * (1 - cv.band)));
-                cairo_line_to(cr, px(cv.x[k]), py(cv.y[k] * (1 + cv.band)));
-            }
-            cairo_stroke(cr);
-            continue;
+        cairo_set_line_width(cr, 5);
+        for (std::size_t k = 0; k < cv.x.size() && k < cv.y.size(); ++k) {
+            if (!f.shows(cv.x[k], cv.y[k] * (1 - cv.band))) continue;
+            cairo_move_to(cr, f.px(cv.x[k]), f.py(cv.y[k] * (1 - cv.band)));
+            cairo_line_to(cr, f.px(cv.x[k]), f.py(cv.y[k] * (1 + cv.band)));
         }
-        cairo_set_source_rgba(cr, col.r, col.g, col.b, 0.18);
-        for (std::size_t k = 0; k < cv.x.size(); ++k) cairo_line_to(cr, px(cv.x[k]), py(cv.y[k] * (1 + cv.band)));
-        for (std::size_t k = cv.x.size(); k-- > 0;) cairo_line_to(cr, px(cv.x[k]), py(cv.y[k] * (1 - cv.band)));
-        cairo_close_path(cr);
+        cairo_stroke(cr);
+        return;
+    }
+    cairo_set_source_rgba(cr, col.r, col.g, col.b, 0.18);
+    for (std::size_t k = 0; k < cv.x.size(); ++k) cairo_line_to(cr, f.px(cv.x[k]), f.py(cv.y[k] * (1 + cv.band)));
+    for (std::size_t k = cv.x.size(); k-- > 0;) cairo_line_to(cr, f.px(cv.x[k]), f.py(cv.y[k] * (1 - cv.band)));
+    cairo_close_path(cr);
+    cairo_fill(cr);
+}
+
+// A line through the points (a curve, or markers that are `joined`); it
+// breaks where a point cannot be drawn (NaN, or <= 0 on a log axis).
+void draw_line(cairo_t* cr, const Curve& cv, const PlotFrame& f) {
+    cairo_set_line_width(cr, 2);
+    bool pen = false;
+    for (std::size_t k = 0; k < cv.x.size() && k < cv.y.size(); ++k) {
+        if (!f.shows(cv.x[k], cv.y[k])) { pen = false; continue; }
+        if (pen) cairo_line_to(cr, f.px(cv.x[k]), f.py(cv.y[k]));
+        else cairo_move_to(cr, f.px(cv.x[k]), f.py(cv.y[k]));
+        pen = true;
+    }
+    cairo_stroke(cr);
+}
+
+void draw_markers(cairo_t* cr, const Curve& cv, const Rgb& col, const PlotFrame& f) {
+    for (std::size_t k = 0; k < cv.x.size() && k < cv.y.size(); ++k) {
+        if (!f.shows(cv.x[k], cv.y[k])) continue;
+        cairo_set_source_rgb(cr, col.r, col.g, col.b);
+        cairo_arc(cr, f.px(cv.x[k]), f.py(cv.y[k]), cv.marker_radius, 0, 2 * M_PI);
         cairo_fill(cr);
-    }
-    for (std::size_t c = 0; c < plot.curves.size(); ++c) {
-        const Curve& cv = plot.curves[c];
-        const Rgb col = category(int(c));
-        cairo_set_source_rgb(cr, col.r, col.g, col.b);
-        if (cv.markers) {
-            for (std::size_t k = 0; k < cv.x.size(); ++k) {
-                cairo_arc(cr, px(cv.x[k]), py(cv.y[k]), 3.5, 0, 2 * M_PI);
-                cairo_fill(cr);
-            }
-        } else {
-            cairo_set_line_width(cr, 2);
-            bool pen = false;
-            for (std::size_t k = 0; k < cv.x.size() && k < cv.y.size(); ++k) {
-                if (!std::isfinite(cv.y[k])) { pen = false; continue; }
-                if (pen) cairo_line_to(cr, px(cv.x[k]), py(cv.y[k]));
-                else cairo_move_to(cr, px(cv.x[k]), py(cv.y[k]));
-                pen = true;
-            }
-            cairo_stroke(cr);
+        if (k < cv.point_labels.size()) {
+            cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+            text(cr, f.px(cv.x[k]) + cv.marker_radius + 3, f.py(cv.y[k]) - cv.marker_radius - 2, cv.point_labels[k], 10);
         }
     }
-    cairo_reset_clip(cr);
-    // legend, top left inside the axes
+}
+
+void draw_legend(cairo_t* cr, const Plot& plot, const PlotFrame& f) {
     for (std::size_t c = 0; c < plot.curves.size(); ++c) {
         const Curve& cv = plot.curves[c];
         const Rgb col = category(int(c));
-        const double lx = L + 12, ly = T + 18 + 18.0 * c;
+        const double lx = f.L + 12;
+        const double ly = plot.legend_above ? 40 + 18.0 * double(c) + 12 : f.T + 18 + 18.0 * double(c);
         cairo_set_source_rgb(cr, col.r, col.g, col.b);
-        if (cv.markers) { cairo_arc(cr, lx + 10, ly - 4, 3.5, 0, 2 * M_PI); cairo_fill(cr); }
-        else { cairo_set_line_width(cr, 2); cairo_move_to(cr, lx, ly - 4); cairo_line_to(cr, lx + 20, ly - 4); cairo_stroke(cr); }
+        if (!cv.markers || cv.joined) {
+            cairo_set_line_width(cr, 2);
+            cairo_move_to(cr, lx, ly - 4); cairo_line_to(cr, lx + 20, ly - 4); cairo_stroke(cr);
+        }
+        if (cv.markers) { cairo_arc(cr, lx + 10, ly - 4, std::min(cv.marker_radius, 5.0), 0, 2 * M_PI); cairo_fill(cr); }
         cairo_set_source_rgb(cr, 0, 0, 0);
         std::string label = cv.label;
         if (cv.band > 0) label += " (band +-" + number(100 * cv.band, "%g") + " %)";
         text(cr, lx + 28, ly, label, 12);
     }
+}
+
+} // namespace
+
+void write_plot_png(const Plot& plot, const std::string& path, int W, int H) {
+    const auto [x_lo, x_hi] = data_range(plot, false, plot.log_x);
+    const auto [y_lo, y_hi] = data_range(plot, true, plot.log_y);
+    bool labelled = false;  // room on the right for the labels of the rightmost points
+    for (const Curve& c : plot.curves) labelled = labelled || !c.point_labels.empty();
+    const double top = plot.legend_above ? 40 + 18.0 * double(plot.curves.size()) + 8 : 40;
+    const PlotFrame f{make_axis(x_lo, x_hi, plot.log_x), make_axis(y_lo, y_hi, plot.log_y), 80, labelled ? 150.0 : 40.0,
+                      top, 55, W, H};
+    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
+    cairo_t* cr = cairo_create(surface);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    draw_axes(cr, plot, f);
+    // error bands first, then lines, then markers (with their labels) on top
+    cairo_rectangle(cr, f.L, f.T, W - f.L - f.R, H - f.T - f.B);
+    cairo_clip(cr);
+    for (std::size_t c = 0; c < plot.curves.size(); ++c)
+        if (plot.curves[c].band > 0) draw_band(cr, plot.curves[c], category(int(c)), f);
+    for (std::size_t c = 0; c < plot.curves.size(); ++c) {
+        const Curve& cv = plot.curves[c];
+        const Rgb col = category(int(c));
+        cairo_set_source_rgb(cr, col.r, col.g, col.b);
+        if (!cv.markers || cv.joined) draw_line(cr, cv, f);
+    }
+    cairo_reset_clip(cr);  // labels may run past the frame
+    for (std::size_t c = 0; c < plot.curves.size(); ++c)
+        if (plot.curves[c].markers) draw_markers(cr, plot.curves[c], category(int(c)), f);
+    draw_legend(cr, plot, f);
     cairo_destroy(cr);
     save(surface, path);
     cairo_surface_destroy(surface);

@@ -232,6 +232,25 @@ TEST_CASE("write the coupled examples", "[.write_examples]") {
     std::ofstream(dir + "elastic_gate.json") << cases::elastic_gate_scene(cases::ElasticGateSpec{}).dump(1) << "\n";
 }
 
+// The sedimentation sweep over d/dp (docs/speed-accuracy.md): the case's
+// scene at three fluid spacings, with the terminal velocity as its metric.
+TEST_CASE("write the sedimentation sweep scenes", "[.write_examples]") {
+    const std::string dir = std::string(PLAB_SOURCE_DIR) + "/examples/sweeps/";
+    for (const auto& [dp, name] : {std::pair{0.0025, "2.5"}, {0.002, "2"}, {0.00125, "1.25"}}) {
+        cases::SedimentationSpec s;
+        s.spacing = dp;
+        json scene = cases::sedimentation_scene(s);
+        scene["description"] = "Speed-accuracy sweep scene (docs/speed-accuracy.md): the sedimentation case (" +
+                               std::string("examples/coupled/sedimentation.json, thesis 7.1) with fluid spacing dp = ") +
+                               name + " mm, d/dp = " + std::to_string(0.0025 / dp).substr(0, 4) +
+                               ", coupling kernel 6 mm; the metric is the terminal velocity (mean over 0.35-0.66 s, "
+                               "as plab validate sedimentation) against Glowinski et al. 2001, 0.0555 m/s.";
+        scene["metrics"] = {{{"name", "terminal_velocity"}, {"history", "disc_vy"}, {"reduce", "mean"}, {"from", 0.35},
+                             {"to", 0.66}, {"scale", -1.0}, {"analytical", cases::glowinski_terminal_velocity}}};
+        std::ofstream(dir + "sedimentation_dp" + name + "mm.json") << scene.dump(1) << "\n";
+    }
+}
+
 TEST_CASE("a structure floor in the SPH sums carries the weight of the water above it", "[coupling]") {
     // water 0.1 x 0.1 m on a floor of fixed structure balls (not boundary
     // balls: their SPH state comes from structure_sph_state), side walls of

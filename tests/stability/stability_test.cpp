@@ -4,6 +4,7 @@
 // garbage. Short runs; the table of outcomes is in docs/stability.md.
 #include "simulation.hpp"
 
+#include <cases/coupling_cases.hpp>
 #include <cases/sph_cases.hpp>
 
 #include <catch2/catch.hpp>
@@ -245,9 +246,11 @@ namespace {
 // A small dam break (column 0.04 x 0.08 m, dp 0.01 m, tank 0.2 m) with
 // boundary balls at dp/2; c0 = `mach_factor` times the largest speed
 // sqrt(2 g H). `jitter` displaces the fluid lattice by up to that fraction of dp.
-json small_dam_break(double mach_factor, double jitter = 0) {
-    const double g = 9.81, a = 0.04, H = 0.08, dp = 0.01, db = dp / 2, h = 1.3 * dp;
-    const double t = std::ceil(2 * h / db) * db, length = 0.2;
+// `scale` multiplies every length (Froude scaling: speeds and times go as
+// its square root).
+json small_dam_break(double mach_factor, double jitter = 0, double scale = 1) {
+    const double g = 9.81, a = 0.04 * scale, H = 0.08 * scale, dp = 0.01 * scale, db = dp / 2, h = 1.3 * dp;
+    const double t = std::ceil(2 * h / db) * db, length = 0.2 * scale;
     const double c0 = mach_factor * std::sqrt(2 * g * H);
     const json sph = {{"smoothing_length", h}, {"kernel", 0}, {"speed_of_sound", c0}, {"viscosity", 1}, {"alpha", 0.1}};
     auto block = [db](double x0, double y0, double x1, double y1) { return cases::boundary_block(x0, y0, x1, y1, db); };
@@ -305,11 +308,40 @@ TEST_CASE("SPH: c0 = 5, 10 and 20 x the largest speed run; 3 x stops on the dens
     }
     Simulation sim(small_dam_break(3));
     sim.set_quiet(true);
+    // the pass knows balls by index; the message must name the user's id
+    World& w = sim.world();
+    for (auto& id : w.bodies.id) id += 1000;
+    w.bodies.next_id += 1000;
     const Outcome o = run(sim, steps_for(sim, 0.15));
     REQUIRE(o.stopped);
     CHECK(o.quantity == "sph_density");
     CHECK_THAT(o.message, Contains("outside rho0 (1 +- 0.05)") && Contains("speed of sound") && Contains("too low") &&
                               Contains("last good state"));
+    CHECK_THAT(o.message, Contains("pass sph_eos: ball id 10") && Contains(" (group fluid) has density"));
+    CHECK_THAT(o.message, !Contains("ball index"));
+}
+
+TEST_CASE("SPH: 1e-6 m and 10 m particles make the same dam break in the same units (no hidden length scale)",
+          "[stability][sph]") {
+    // Froude scaling: lengths x s, times and speeds x sqrt(s), c0 = 10 sqrt(2 g H)
+    // scales with them, so x/s at t/sqrt(s) must not depend on s
+    auto front = [](double dp) {
+        const double s = dp / 0.01;
+        Simulation sim(small_dam_break(10, 0, s));
+        sim.set_quiet(true);
+        World& w = sim.world();
+        const Outcome o = run(sim, steps_for(sim, 0.1 * std::sqrt(s)));
+        INFO("dp " << dp << " m: " << o.message);
+        CHECK_FALSE(o.stopped);
+        double x = -kInf;
+        for (std::size_t i = 0; i < w.bodies.size(); ++i)
+            if (w.bodies.group[i] == 0) x = std::max(x, w.bodies.position[i].x());
+        return x / s;
+    };
+    const double x_cm = front(0.01);
+    CHECK(x_cm > 0.04 * 1.5);  // the surge has moved out
+    CHECK(front(1e-6) == Approx(x_cm).epsilon(1e-6));
+    CHECK(front(10.0) == Approx(x_cm).epsilon(1e-6));
 }
 
 TEST_CASE("SPH: a disordered initial lattice (20 % of dp) relaxes without leaving the density band", "[stability][sph]") {
@@ -318,4 +350,95 @@ TEST_CASE("SPH: a disordered initial lattice (20 % of dp) relaxes without leavin
     const Outcome o = run(sim, steps_for(sim, 0.1));
     INFO(o.message);
     CHECK_FALSE(o.stopped);
+}
+
+// ---- SPH-DEM coupling ----------------------------------------------------
+
+namespace {
+
+struct Settling {
+    bool stopped = false;
+    std::string quantity, message;
+    std::vector<double> t, y, v;  // the disc's height (m) and vertical velocity (m/s)
+};
+
+// The sedimentation case's scene (docs/coupling.md) at its coarse
+// resolution (dp 2.5 mm, the disc's diameter), the disc of density
+// rho_f / ratio released at rest at y = 0.04 m, run for `seconds`.
+Settling settle(double ratio, double seconds, double floor_kn = 0) {
+    cases::SedimentationSpec spec;
+    spec.spacing = 0.0025;
+    json scene = cases::sedimentation_scene(spec);
+    scene.erase("commands");
+    scene.erase("histories");
+    scene["bodies"].back()["density"] = 1000.0 / ratio;
+    if (floor_kn > 0) scene["contact_models"].back()["properties"]["kn"] = floor_kn;
+    Simulation sim(scene);
+    sim.set_quiet(true);
+    World& w = sim.world();
+    const std::size_t disc = w.bodies.size() - 1;
+    REQUIRE(w.group_names()[w.bodies.group[disc]] == "disc");
+    w.prepare();
+    Settling out;
+    try {
+        while (w.time < seconds) {
+            w.step();
+            out.t.push_back(w.time);
+            out.y.push_back(w.bodies.position[disc].y());
+            out.v.push_back(w.bodies.velocity[disc].y());
+        }
+    } catch (const RunError& e) {
+        out.stopped = true;
+        out.quantity = e.quantity();
+        out.message = e.what();
+    }
+    for (const Vec& x : w.bodies.position) REQUIRE(x.allFinite());  // never garbage
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("fluid/solid density ratio 0.1, 1 and 10: a heavy disc sinks no faster than buoyant free fall, a neutral one "
+          "hovers, a light one rises to the lid", "[stability][coupling]") {
+    constexpr double g = 9.81, d = 0.0025, terminal_1250 = 0.0555;  // Glowinski: rho_s = 1250 settles at 0.0555 m/s
+    SECTION("ratio 0.1 (rho_s = 10000): sinks; drag only slows it, so |v| <= g (1 - rho_f/rho_s) t") {
+        const Settling s = settle(0.1, 0.1);
+        INFO(s.message);
+        REQUIRE_FALSE(s.stopped);
+        CHECK(s.y.back() < 0.04 - 10 * d);
+        for (std::size_t k = 0; k < s.t.size(); ++k) {
+            CHECK(s.v[k] < 0.01 * g * s.t[k] + 1e-6);  // downward from the first steps
+            CHECK(-s.v[k] <= 1.05 * g * 0.9 * s.t[k] + 1e-3);
+        }
+    }
+    SECTION("ratio 1 (rho_s = rho_f): hovers; the drift is a fraction of the rho_s = 1250 disc's settling speed") {
+        const Settling s = settle(1.0, 0.2);
+        INFO(s.message);
+        REQUIRE_FALSE(s.stopped);
+        const double mean_v = (s.y.back() - 0.04) / s.t.back();
+        CHECK(std::fabs(mean_v) < 0.25 * terminal_1250);
+        CHECK(std::fabs(s.y.back() - 0.04) < d);
+    }
+    SECTION("ratio 10 (rho_s = 100): rises and comes to rest under the lid, inside the box") {
+        const Settling s = settle(10.0, 0.2);
+        INFO(s.message);
+        REQUIRE_FALSE(s.stopped);
+        CHECK(s.y.back() > 0.055);
+        CHECK(s.y.back() < 0.06);
+        CHECK(std::fabs(s.v.back()) < 0.01);
+    }
+}
+
+TEST_CASE("a heavy disc on a floor contact sized for a light one goes through it and stops on the domain, and a stiffer "
+          "floor holds it", "[stability][coupling]") {
+    // rho_s = 10000 reaches ~0.5 m/s: the floor's kn 1e3 N/m lets it overlap v sqrt(m/k) ~ 3 mm > r
+    const Settling soft = settle(0.1, 0.3);
+    REQUIRE(soft.stopped);
+    CHECK(soft.quantity == "domain");
+    CHECK_THAT(soft.message, Contains("(group disc)") && Contains("went through a wall"));
+    const Settling stiff = settle(0.1, 0.3, 1e5);
+    INFO(stiff.message);
+    CHECK_FALSE(stiff.stopped);
+    CHECK(stiff.y.back() > 0.0);
+    CHECK(stiff.y.back() < 0.00125 + 1e-4);  // resting on the floor
 }

@@ -213,7 +213,9 @@ typedef struct plab_pass_view {
     /* since ABI 2: a pass that returns PLAB_PASS_UNSTABLE writes one line
      * here, "QUANTITY: which body, the value against its bound; likely
      * cause: ..." (NUL-terminated, at most diagnostic_capacity bytes
-     * including the NUL). Older passes never touch it. */
+     * including the NUL). Older passes never touch it. Name a body as
+     * "ball index N", N its index in this view: the host replaces that with
+     * the ball's id and group, which is how the user knows it. */
     char* diagnostic;
     uint32_t diagnostic_capacity;
 } plab_pass_view;

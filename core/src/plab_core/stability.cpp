@@ -189,21 +189,32 @@ std::string World::contact_name(const ModelInstance& inst, const ContactSet& s, 
     return name + ", model " + inst.model;
 }
 
+namespace {
+
+// "timestep ... x the stable limit ... of MODEL", when dt is above the limit s.
+std::string assess_timestep(const StableStep& s, double dt, const std::string& when) {
+    if (!(s.critical < kInf) || !(s.critical > 0) || !(dt > 0)) return "";
+    const double ratio = dt / s.critical;
+    if (!(ratio > 1.0)) return "";
+    return "timestep " + fmt(dt) + " s is " + fmt(ratio) + "x the stable limit " + fmt(s.critical) + " s of " +
+           s.limited_by + when + " (lower timestep.fixed, or use the automatic step)";
+}
+
+} // namespace
+
 // The first suspect of any instability: a step above the stable limit the
 // models reported at the last good state.
-std::string World::timestep_assessment() const {
-    const StableStep& s = snapshot_stable_;
-    if (!(s.critical < kInf) || !(last_dt > 0)) return "";
-    const double ratio = last_dt / s.critical;
-    if (ratio <= 1.0) return "";
-    return "timestep " + fmt(last_dt) + " s is " + fmt(ratio) + "x the stable limit " + fmt(s.critical) + " s of " +
-           s.limited_by + " (lower timestep.fixed, or use the automatic step)";
-}
+std::string World::timestep_assessment() const { return assess_timestep(snapshot_stable_, last_dt, ""); }
 
 void World::stop(Diagnostic d) {
     d.step = step_count;
     d.time = time;
-    const std::string dt = timestep_assessment();
+    std::string dt = timestep_assessment();
+    // A limit that depends on the state (a drag that grows with the slip,
+    // SPH's |v| in the CFL step) can fall below a fixed step after the last
+    // good state: the limits the models reported in this step, if finite.
+    if (dt.empty()) dt = assess_timestep(stable_timestep(), last_dt, " at the failing step (it was above the step at "
+                                                                     "the last good state)");
     if (!dt.empty()) d.cause = dt + "; else " + d.cause;
     stopped = d;
     throw RunError(d.message(), d.quantity);
@@ -213,9 +224,33 @@ void World::stop(Diagnostic d) {
 
 namespace plab {
 
+namespace {
+
+// A pass knows a body only by its index in the view; the user knows it by
+// the id in the scene and the outputs. "ball index N" in a pass's message
+// (the convention of abi.h) becomes "ball id ID (group NAME)", so the ABI
+// needs no id column.
+std::string name_balls(std::string message, const Bodies& bodies, const std::vector<std::string>& groups) {
+    const std::string key = "ball index ";
+    for (std::size_t at = message.find(key); at != std::string::npos; at = message.find(key, at)) {
+        std::size_t end = at + key.size();
+        while (end < message.size() && message[end] >= '0' && message[end] <= '9' && end - at < key.size() + 18) ++end;
+        const std::string digits = message.substr(at + key.size(), end - at - key.size());
+        const unsigned long long i = digits.empty() ? ~0ull : std::stoull(digits);
+        if (i >= bodies.size()) { at = end; continue; }  // not a body of this world: leave it as written
+        const std::string name = "ball id " + std::to_string(bodies.id[i]) + " (group " + groups[bodies.group[i]] + ")";
+        message.replace(at, end - at, name);
+        at += name.size();
+    }
+    return message;
+}
+
+} // namespace
+
 // A pass's message reads "QUANTITY: what, where, value against bound;
 // likely cause: ..." (abi.h); the parts go where the host's own go.
-Diagnostic World::pass_diagnostic(const std::string& pass, const std::string& message) const {
+Diagnostic World::pass_diagnostic(const std::string& pass, const std::string& raw) const {
+    const std::string message = name_balls(raw, bodies, groups_);
     Diagnostic d;
     const std::size_t colon = message.find(": ");
     d.quantity = colon == std::string::npos ? pass : message.substr(0, colon);
