@@ -59,7 +59,8 @@ struct SphEos {
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 10;  // after sph_density_integration
     enum Prop : int {
-        rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, density_band, prop_count
+        rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, density_band,
+        initial_density, prop_count
     };
     static constexpr plab_property_desc properties[] = {
         rest_density_desc, speed_of_sound_desc, gamma_desc,
@@ -71,6 +72,9 @@ struct SphEos {
         {"density_band", "largest |rho/rho0 - 1| of a fluid ball", "1", 0.05, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
          "the run stops (last good state kept) when a fluid density leaves rho0 (1 +- band); the density error grows "
          "as (v/c0)^2 and g H/c0^2: 0.05 passes c0 = 5 x the largest speed and stops 3 x (docs/stability.md)"},
+        {"initial_density", "set the initial density", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
+         "1: at the first run rho0 / the hydrostatic profile (a state for the continuity equation or the normalised "
+         "summation); 0: keep what the density pass computed (plain summation density, a function of positions)"},
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
     enum Field : int { density, pressure };
@@ -79,7 +83,7 @@ struct SphEos {
     explicit SphEos(const double* p)
         : rho0_(p[rest_density]), gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
           boundary_(int(p[boundary_group])), g_(p[hydrostatic_gravity]), surface_(p[surface_level]),
-          c0_(p[speed_of_sound]), band_(p[density_band]) {}
+          c0_(p[speed_of_sound]), band_(p[density_band]), initialised_(int(p[initial_density]) == 0) {}
 
     void run(const plab_pass_view& v) {
         if (!initialised_) initialise(v);
@@ -143,7 +147,7 @@ private:
     double rho0_, gamma_, b_;
     int boundary_;
     double g_, surface_, c0_, band_;
-    bool initialised_ = false;
+    bool initialised_;
 };
 
 // Boundary pressure by extrapolation from the fluid (Islam eqs. 10–11,
@@ -261,8 +265,90 @@ private:
     int boundary_;
 };
 
+// Summation density (thesis eq. 8), ρ_i = Σ_j m_j W_ij over every ball
+// within the support, the ball itself included (W_ii = W(0)), or its
+// normalised form (eq. 9, Shepard; Randles & Libersky 1996)
+// ρ_i = Σ_j m_j W_ij / Σ_j (m_j/ρ_j) W_ij, with ρ_j as the pass finds it.
+// Fixed boundary balls contribute to the fluid's sums (thesis §2.2.4,
+// LIGGGHTS' sph/density/summation) but keep their own density (ρ0, or the
+// wall pressure pass's).
+//  * Plain (eq. 8): instead of sph_density_integration; the density is a
+//    function of the positions, recomputed every step before the EOS. It
+//    underestimates the density where the support is truncated (free
+//    surface: about 0.76 ρ0 on the top row of a resting lattice).
+//  * Normalised (eq. 9): ρ_i is a weighted harmonic mean of the ρ_j, so
+//    alone it cannot see a compression (a uniformly compressed lattice
+//    keeps ρ_i = ρ_j). It is therefore a Shepard filter on the density of
+//    the continuity equation: run it after sph_density_integration (stage
+//    5 > 0). It removes the free-surface deficit (ρ0 at every particle of
+//    a uniform fluid) and smooths the density noise of eq. 7.
+// Every active pair within the support counts, whatever its model: not
+// for scenes with DEM grains inside the fluid.
+struct SphDensitySummation {
+    static constexpr const char* name = "sph_density_summation";
+    static constexpr const char* doc =
+        "Summation density rho_i = sum_j m_j W_ij (thesis eq. 8; instead of sph_density_integration), or normalised "
+        "by sum_j (m_j/rho_j) W_ij (eq. 9; a Shepard filter after sph_density_integration), every step before the "
+        "EOS. Boundary balls contribute and keep their density.";
+    static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
+    static constexpr uint32_t stage = 5;  // after sph_density_integration (0), before sph_eos (10)
+    enum Prop : int { smoothing_length, kernel, boundary_group, normalised, prop_count };
+    static constexpr plab_property_desc properties[] = {
+        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"},
+        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
+        boundary_group_desc,
+        {"normalised", "normalised summation", "1", 0.0, 0.0, 1.0, PLAB_INTEGER,
+         "0: rho_i = sum m_j W_ij (eq. 8); 1: divided by sum (m_j/rho_j) W_ij (eq. 9, Shepard filter of the "
+         "continuity density: use with sph_density_integration)"},
+    };
+    static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
+    enum Field : int { density };
+    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}};
+
+    explicit SphDensitySummation(const double* p)
+        : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), boundary_(int(p[boundary_group])),
+          normalised_(int(p[normalised]) == 1) {}
+
+    void run(const plab_pass_view& v) {
+        const plab::sph::Kernel W{kind_, int(v.dim), h_};
+        const double support2 = W.support() * W.support(), w0 = W.value(0);
+        double* rho = v.fields[density];
+        mass_sum_.assign(v.body_count, 0.0);
+        volume_sum_.assign(normalised_ ? v.body_count : 0, 0.0);
+        for (uint32_t k = 0; k < v.contact_count; ++k) {
+            if (v.contact_end2_is_wall[k]) continue;
+            const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
+            const double* xi = v.position + 3 * i;
+            const double* xj = v.position + 3 * j;
+            const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+            const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if (r2 >= support2) continue;
+            const double w = W.value(std::sqrt(r2));
+            mass_sum_[i] += v.mass[j] * w;
+            mass_sum_[j] += v.mass[i] * w;
+            if (!normalised_) continue;
+            volume_sum_[i] += v.mass[j] / rho[j] * w;
+            volume_sum_[j] += v.mass[i] / rho[i] * w;
+        }
+        for (uint32_t i = 0; i < v.body_count; ++i) {
+            if (v.group[i] == boundary_) continue;
+            const double mass = mass_sum_[i] + v.mass[i] * w0;  // eq. 8 includes j = i
+            rho[i] = normalised_ ? mass / (volume_sum_[i] + v.mass[i] / rho[i] * w0) : mass;
+        }
+    }
+
+private:
+    plab::sph::KernelKind kind_;
+    double h_;
+    int boundary_;
+    bool normalised_;
+    std::vector<double> mass_sum_, volume_sum_;
+};
+
 } // namespace
 
 PLAB_PLUGIN(plab::add_pass<SphEos>(r) != 0     ? 1
             : plab::add_pass<SphWallPressure>(r) != 0 ? 1
-                                                 : plab::add_pass<SphDensityIntegration>(r))
+            : plab::add_pass<SphDensityIntegration>(r) != 0 ? 1
+                                                 : plab::add_pass<SphDensitySummation>(r))

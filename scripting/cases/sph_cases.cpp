@@ -37,6 +37,15 @@ json boundary_block(double x0, double y0, double x1, double y1, double db, doubl
             {"mass", rest_density * db * db}, {"fix", {"all"}}};
 }
 
+json density_passes(int method, int boundary) {
+    const json integration = {{"name", "sph_density_integration"}, {"properties", {{"boundary_group", boundary}}}};
+    const json summation = {{"name", "sph_density_summation"}, {"material", "water"},
+                            {"properties", {{"boundary_group", boundary}, {"normalised", method == 2 ? 1 : 0}}}};
+    if (method == 0) return json::array({integration});
+    if (method == 1) return json::array({summation});
+    return json::array({integration, summation});  // eq. 9 filters the continuity density
+}
+
 json static_tank_scene(const StaticTankSpec& s) {
     const double dp = s.spacing, db = dp / 2, W = s.columns * dp, H = depth(s), h = s.h_over_dp * dp;
     const double t = s.boundary_layers * db, wall_top = H + 4 * dp;
@@ -46,8 +55,13 @@ json static_tank_scene(const StaticTankSpec& s) {
                         {"rest_density", rho0}, {"speed_of_sound", c0}, {"gamma", gamma_tait}};
     const json sph = {{"viscosity", s.alpha > 0 ? 1 : 0}, {"mu", s.viscosity}, {"alpha", s.alpha}};
     json passes = {{{"name", "sph_eos"}, {"material", "water"},
-                    {"properties", {{"boundary_group", boundary_group}, {"hydrostatic_gravity", g}, {"surface_level", H}}}},
-                   {{"name", "sph_density_integration"}, {"properties", {{"boundary_group", boundary_group}}}}};
+                    {"properties", {{"boundary_group", boundary_group}, {"hydrostatic_gravity", g}, {"surface_level", H},
+                                    // plain summation: the top rows sit below rho0; its density
+                                    // follows from the positions, no initial profile (docs/sph.md)
+                                    {"density_band", s.density == 1 ? 0.2 : 0.05},
+                                    {"initial_density", s.density == 1 ? 0 : 1}}}},
+                  };
+    for (const json& d : density_passes(s.density, boundary_group)) passes.push_back(d);
     if (s.wall_pressure)
         passes.push_back({{"name", "sph_wall_pressure"}, {"material", "water"},
                           {"properties", {{"boundary_group", boundary_group}}}});

@@ -11,6 +11,11 @@ namespace plab::cases {
 // spacing db, mass rho0 db², every degree of freedom fixed, group "boundary".
 nlohmann::json boundary_block(double x0, double y0, double x1, double y1, double db, double rho0 = 1000.0);
 
+// The density passes of a scene whose material is "water": method 0 the
+// continuity equation (thesis eq. 7, sph_density_integration), 1 summation
+// (eq. 8), 2 continuity filtered by the normalised summation (eq. 9).
+nlohmann::json density_passes(int method, int boundary_group);
+
 // Thesis §5.1, Table 1: a 2D tank of fluid at rest under gravity, walls of
 // fixed boundary balls (thesis §2.2.4) at half the fluid spacing, density
 // initialised hydrostatically by the inverse EOS.
@@ -25,6 +30,7 @@ struct StaticTankSpec {
     double alpha = 0;              // > 0: Monaghan artificial viscosity instead of the laminar one
     double end_time = 1.0;         // s
     bool wall_pressure = true;     // boundary pressure extrapolated (Islam eqs. 10-11); false: thesis p = 0
+    int density = 0;               // 0 continuity (eq. 7), 1 summation (eq. 8), 2 continuity + normalised summation (eq. 9)
 };
 
 struct StaticTankResult {
