@@ -346,9 +346,77 @@ private:
     std::vector<double> mass_sum_, volume_sum_;
 };
 
+// XSPH (thesis eq. 18; Monaghan 1989): a particle moves with its velocity
+// smoothed over its neighbours,
+//   dx_i/dt = v_i + ε Σ_j m_j (v_j - v_i) W_ij / ρ̄_ij,   ρ̄_ij = (ρ_i + ρ_j)/2,
+// with v at the half step. The pass runs before the drift (phase PRE_DRIFT,
+// ABI 3) and writes the correction into the host's drift velocity
+// correction fields; the velocity itself (momentum, kinetic energy) is
+// untouched. Fluid–fluid pairs only: boundary balls neither receive nor give
+// a correction, so Σ m_i δv_i = 0 exactly (each pair adds ±ε m_i m_j (v_j -
+// v_i) W/ρ̄) and the fluid's centre of mass drifts with its momentum.
+struct SphXsph {
+    static constexpr const char* name = "sph_xsph";
+    static constexpr const char* doc =
+        "XSPH (thesis eq. 18): the drift moves a fluid ball with v_i + eps sum_j m_j (v_j - v_i) W_ij / rho_ij, "
+        "fluid-fluid pairs, half-step velocities; the velocity itself is unchanged.";
+    static constexpr uint32_t phase = PLAB_PHASE_PRE_DRIFT;
+    static constexpr uint32_t stage = 0;
+    enum Prop : int { smoothing_length, kernel, boundary_group, epsilon, prop_count };
+    static constexpr plab_property_desc properties[] = {
+        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"},
+        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
+        boundary_group_desc,
+        {"epsilon", "XSPH coefficient", "1", 0.5, 0.0, 1.0, 0,
+         "eps of eq. 18; 0.5 is usual, large values slow the flow unphysically (thesis 2.2.3)"},
+    };
+    static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
+    enum Field : int { density, dvx, dvy, dvz };
+    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0},
+                                                 {PLAB_DRIFT_CORRECTION_X, "m/s", 0.0},
+                                                 {PLAB_DRIFT_CORRECTION_Y, "m/s", 0.0},
+                                                 {PLAB_DRIFT_CORRECTION_Z, "m/s", 0.0}};
+
+    explicit SphXsph(const double* p)
+        : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), boundary_(int(p[boundary_group])),
+          epsilon_(p[epsilon]) {}
+
+    void run(const plab_pass_view& v) const {
+        const plab::sph::Kernel W{kind_, int(v.dim), h_};
+        const double support2 = W.support() * W.support();
+        const double* rho = v.fields[density];
+        double* dv[3] = {v.fields[dvx], v.fields[dvy], v.fields[dvz]};
+        for (int c = 0; c < 3; ++c) std::fill(dv[c], dv[c] + v.body_count, 0.0);
+        for (uint32_t k = 0; k < v.contact_count; ++k) {
+            if (v.contact_end2_is_wall[k]) continue;
+            const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
+            if (v.group[i] == boundary_ || v.group[j] == boundary_) continue;
+            const double* xi = v.position + 3 * i;
+            const double* xj = v.position + 3 * j;
+            const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+            const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if (r2 >= support2) continue;
+            const double s = epsilon_ * W.value(std::sqrt(r2)) / (0.5 * (rho[i] + rho[j]));
+            for (int c = 0; c < 3; ++c) {
+                const double v_ji = v.velocity[3 * j + c] - v.velocity[3 * i + c];
+                dv[c][i] += s * v.mass[j] * v_ji;
+                dv[c][j] -= s * v.mass[i] * v_ji;
+            }
+        }
+    }
+
+private:
+    plab::sph::KernelKind kind_;
+    double h_;
+    int boundary_;
+    double epsilon_;
+};
+
 } // namespace
 
 PLAB_PLUGIN(plab::add_pass<SphEos>(r) != 0     ? 1
             : plab::add_pass<SphWallPressure>(r) != 0 ? 1
             : plab::add_pass<SphDensityIntegration>(r) != 0 ? 1
-                                                 : plab::add_pass<SphDensitySummation>(r))
+            : plab::add_pass<SphDensitySummation>(r) != 0 ? 1
+                                                 : plab::add_pass<SphXsph>(r))

@@ -52,12 +52,16 @@ json dam_break_scene(const DamBreakSpec& s) {
     const json viscosity = s.mu > 0 ? json{{"viscosity", 0}, {"mu", s.mu}} : json{{"viscosity", 1}, {"alpha", s.alpha}};
     json sph = viscosity, sph_wall = viscosity;  // δ-SPH between fluid balls only
     sph["density_diffusion"] = s.delta;
-    json passes = {
-        {{"name", "sph_density_integration"}, {"properties", {{"boundary_group", 1}}}},
+    json passes = density_passes(s.density, 1);
+    for (json p : json::array({
         {{"name", "sph_eos"}, {"material", "water"},
          {"properties", {{"boundary_group", 1}, {"hydrostatic_gravity", g}, {"surface_level", 2 * a}}}},
         {{"name", "sph_wall_pressure"}, {"material", "water"},
-         {"properties", {{"boundary_group", 1}, {"no_slip", s.no_slip ? 1 : 0}}}}};
+         {"properties", {{"boundary_group", 1}, {"no_slip", s.no_slip ? 1 : 0}}}}}))
+        passes.push_back(p);
+    if (s.xsph > 0)
+        passes.push_back({{"name", "sph_xsph"}, {"material", "water"},
+                          {"properties", {{"boundary_group", 1}, {"epsilon", s.xsph}}}});
     json bodies = {
         {{"type", "lattice"}, {"group", "fluid"}, {"packing", dim == 2 ? "square" : "cubic"},
          {"box", {{"min", dim == 2 ? json{0, 0} : json{0, 0, 0}}, {"max", dim == 2 ? json{a, 2 * a} : json{a, 2 * a, D}}}},
@@ -107,6 +111,26 @@ double front_at(const DamBreakResult& r, double T) {
     return k == 0 ? r.Z[0] : r.Z[k - 1] + (r.Z[k] - r.Z[k - 1]) * (T - r.T[k - 1]) / (r.T[k] - r.T[k - 1]);
 }
 
+namespace {
+// std/mean of the distance from each ball of a group to its nearest
+// neighbour in that group (O(n²): a measurement at the end of a run).
+double nearest_neighbour_spread(const World& w, int group) {
+    std::vector<double> nearest;
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+        if (w.bodies.group[i] != group) continue;
+        double best = 1e300;
+        for (std::size_t j = 0; j < w.bodies.size(); ++j)
+            if (j != i && w.bodies.group[j] == group)
+                best = std::min(best, (w.bodies.position[j] - w.bodies.position[i]).squaredNorm());
+        nearest.push_back(std::sqrt(best));
+    }
+    double mean = 0, var = 0;
+    for (double d : nearest) mean += d / double(nearest.size());
+    for (double d : nearest) var += (d - mean) * (d - mean) / double(nearest.size());
+    return std::sqrt(var) / mean;
+}
+} // namespace
+
 DamBreakResult dam_break(const DamBreakSpec& s) {
     Simulation sim(dam_break_scene(s));
     sim.set_quiet(true);
@@ -130,6 +154,7 @@ DamBreakResult dam_break(const DamBreakSpec& s) {
     }
     r.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
     r.steps = long(w.step_count);
+    r.disorder = nearest_neighbour_spread(w, fluid);
     const auto ref = martin_moyce(s.end_T);
     // PLAB_DAM_BREAK_TRACE=1 prints the simulated front beside each reference point
     const bool show = std::getenv("PLAB_DAM_BREAK_TRACE") != nullptr;

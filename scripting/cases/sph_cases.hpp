@@ -64,6 +64,8 @@ struct DamBreakSpec {
     int dim = 2;
     double boundary_ratio = 0.5;  // boundary-ball spacing / dp (thesis: 1/2; Islam: 1)
     double depth = 0.04;          // 3D: column thickness between the free-slip side walls, m
+    double xsph = 0;              // > 0: XSPH with this epsilon (thesis eq. 18, sph_xsph pass)
+    int density = 0;              // as StaticTankSpec::density (0 continuity, 2 with the eq. 9 filter)
 };
 
 struct DamBreakResult {
@@ -71,6 +73,9 @@ struct DamBreakResult {
     double mean_error = 0, max_error = 0;
     long fluid = 0, steps = 0;
     double cpu_seconds = 0;
+    // particle disorder at the end: coefficient of variation (std/mean) of
+    // each fluid ball's distance to its nearest fluid neighbour (0: a lattice)
+    double disorder = 0;
 };
 
 nlohmann::json dam_break_scene(const DamBreakSpec& s);
