@@ -155,9 +155,15 @@ private:
 // p = 0: each boundary ball w takes
 //   p_w = (Σ_f p_f W_wf + g·Σ_f ρ_f (x_w - x_f) W_wf) / Σ_f W_wf,
 //   ρ_w = ρ0 (p_w/B + 1)^(1/γ),
-// over its fluid neighbours f (walls at rest or at constant velocity:
-// a_w = 0). With p_w = 0 the wall pushes with half the pressure the fluid
-// needs and the first fluid row is over-compressed (docs/sph.md).
+// over its fluid neighbours f, with g - a_w in place of g (Islam eq. 10):
+// a_w is the wall ball's acceleration, from the change of its prescribed
+// velocity since the previous step, a_w = (v_w - v_w,prev)/dt (zero for a
+// wall at rest or at constant velocity). A re-evaluation (dt = 0: start, a
+// `set`, a restart) keeps the stored a_w and takes the velocity as the new
+// reference, so a velocity set by a command is a new motion, not an
+// infinite acceleration, and a restart sees the a_w of the run it continues.
+// With p_w = 0 the wall pushes with half the pressure the fluid needs and
+// the first fluid row is over-compressed (docs/sph.md).
 // No-slip (Adami et al. 2012, eq. 22): the viscous terms see the wall ball
 // at v_w = 2 v_prescribed - ṽ_w, ṽ_w = Σ_f v_f W_wf / Σ_f W_wf, so the
 // velocity interpolated to the wall surface is the wall's own. The pass
@@ -172,7 +178,8 @@ struct SphWallPressure {
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 20;  // after sph_eos
     enum Prop : int {
-        smoothing_length, kernel, rest_density, speed_of_sound, gamma, boundary_group, gx, gy, gz, no_slip, prop_count
+        smoothing_length, kernel, rest_density, speed_of_sound, gamma, boundary_group, gx, gy, gz, no_slip,
+        wall_acceleration, prop_count
     };
     static constexpr plab_property_desc properties[] = {
         {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
@@ -187,20 +194,30 @@ struct SphWallPressure {
         {"no_slip", "no-slip walls", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
          "1: viscous terms see the wall at 2 v_wall - (fluid velocity interpolated to the wall ball) (Adami 2012); "
          "0: at the wall ball's own velocity"},
+        {"wall_acceleration", "wall acceleration term", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
+         "1: g - a_w in the extrapolation (Islam eq. 10), a_w from the wall ball's prescribed velocity history; "
+         "0: g only (a_w = 0)"},
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
-    enum Field : int { density, pressure, wall_dvx };
+    enum Field : int { density, pressure, wall_dvx, wall_ax = wall_dvx + 3, wall_vx_prev = wall_ax + 3 };
     static constexpr plab_field_desc fields[] = {
         {"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0},
         {"sph_wall_velocity_correction_x", "m/s", 0.0}, {"sph_wall_velocity_correction_y", "m/s", 0.0},
-        {"sph_wall_velocity_correction_z", "m/s", 0.0}};
+        {"sph_wall_velocity_correction_z", "m/s", 0.0},
+        // fields rather than pass state: checkpoints and the last good state carry them
+        {"sph_wall_acceleration_x", "m/s2", 0.0}, {"sph_wall_acceleration_y", "m/s2", 0.0},
+        {"sph_wall_acceleration_z", "m/s2", 0.0},
+        {"sph_wall_velocity_previous_x", "m/s", 0.0}, {"sph_wall_velocity_previous_y", "m/s", 0.0},
+        {"sph_wall_velocity_previous_z", "m/s", 0.0}};
 
     explicit SphWallPressure(const double* p)
         : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), rho0_(p[rest_density]),
           gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
-          boundary_(int(p[boundary_group])), g_{p[gx], p[gy], p[gz]}, no_slip_(int(p[no_slip]) == 1) {}
+          boundary_(int(p[boundary_group])), g_{p[gx], p[gy], p[gz]}, no_slip_(int(p[no_slip]) == 1),
+          accelerating_(int(p[wall_acceleration]) == 1) {}
 
     void run(const plab_pass_view& v) {
+        if (accelerating_) update_wall_acceleration(v);
         const plab::sph::Kernel W{kind_, int(v.dim), h_};
         weighted_.assign(v.body_count, 0.0);
         weights_.assign(v.body_count, 0.0);
@@ -216,7 +233,9 @@ struct SphWallPressure {
             const double* xf = v.position + 3 * f;
             const double d[3] = {xw[0] - xf[0], xw[1] - xf[1], xw[2] - xf[2]};
             const double kernel_value = W.value(std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
-            const double g_dot_d = g_[0] * d[0] + g_[1] * d[1] + g_[2] * d[2];
+            double g_dot_d = g_[0] * d[0] + g_[1] * d[1] + g_[2] * d[2];
+            if (accelerating_)  // (g - a_w)·(x_w - x_f), Islam eq. 10
+                for (int c = 0; c < 3; ++c) g_dot_d -= v.fields[wall_ax + c][w] * d[c];
             weighted_[w] += (p[f] + rho[f] * g_dot_d) * kernel_value;
             weights_[w] += kernel_value;
             for (int c = 0; c < 3; ++c) fluid_velocity_[3 * w + c] += v.velocity[3 * f + c] * kernel_value;
@@ -233,11 +252,25 @@ struct SphWallPressure {
     }
 
 private:
+    // a_w = (v - v_prev)/dt per boundary ball; dt = 0 (a re-evaluation)
+    // keeps a_w and takes v as the new reference
+    void update_wall_acceleration(const plab_pass_view& v) const {
+        for (uint32_t i = 0; i < v.body_count; ++i) {
+            if (v.group[i] != boundary_) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double u = v.velocity[3 * i + c];
+                double& prev = v.fields[wall_vx_prev + c][i];
+                if (v.dt > 0) v.fields[wall_ax + c][i] = (u - prev) / v.dt;
+                prev = u;
+            }
+        }
+    }
+
     plab::sph::KernelKind kind_;
     double h_, rho0_, gamma_, b_;
     int boundary_;
     double g_[3];
-    bool no_slip_;
+    bool no_slip_, accelerating_;
     std::vector<double> weighted_, weights_, fluid_velocity_;
 };
 

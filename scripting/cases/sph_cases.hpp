@@ -31,6 +31,11 @@ struct StaticTankSpec {
     double end_time = 1.0;         // s
     bool wall_pressure = true;     // boundary pressure extrapolated (Islam eqs. 10-11); false: thesis p = 0
     int density = 0;               // 0 continuity (eq. 7), 1 summation (eq. 8), 2 continuity + normalised summation (eq. 9)
+    // > 0: the tank accelerates upward at this rate from rest (m/s²), its
+    // boundary balls driven v = a (t + dt/2) at a fixed step; the fluid
+    // should hold p = ρ0 (g + a)(H - y) relative to the tank
+    double tank_acceleration = 0;
+    bool wall_acceleration_term = true;  // sph_wall_pressure's (g - a_w) (Islam eq. 10); false: g only
 };
 
 struct StaticTankResult {
