@@ -157,7 +157,7 @@ TEST_CASE("a plate whose bonds break restarts bit-identically, break log include
     }
 }
 
-TEST_CASE("an SPH tank restarts bit-identically (fields and the EOS pass state carried; with XSPH too), 1 and 2 threads",
+TEST_CASE("an SPH tank restarts bit-identically (fields and the EOS pass state carried, with XSPH too), 1 and 2 threads",
           "[restart][sph]") {
     ThreadsBack back;
     for (int threads : {1, 2}) {
