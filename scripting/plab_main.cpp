@@ -148,7 +148,7 @@ void describe(const PluginHost& host, const std::string& name) {
         return;
     }
     if (const plab_pass_desc* p = host.pass(name)) {
-        static const char* phases[] = {"pre-force", "post-force", "integrate", "rates-done"};
+        static const char* phases[] = {"pre-force", "post-force", "integrate", "rates-done", "pre-drift"};
         std::cout << "pass " << p->name << " (" << phases[p->phase] << ", stage " << p->stage << ")\n  " << p->doc << "\n";
         for (uint32_t f = 0; f < p->field_count; ++f)
             std::cout << "  field " << p->fields[f].name << " [" << p->fields[f].unit << "]\n";

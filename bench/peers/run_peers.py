@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
-"""plab against LAMMPS and LIGGGHTS on the issue-8 granular scenes, side by side.
+"""plab against LAMMPS and LIGGGHTS on the issue-8 scenes, side by side.
 
+Scenes: gran3d, gran2d (granular settling) and sph (the SPH double dam break,
+sph_double_dam_break.json / liggghts_sph.in: LAMMPS has no SPH in Debian, so
+it is run against LIGGGHTS only, 8000 steps unless --sph-steps says otherwise).
 Runs every (scene, code, threads) combination `--reps` times, interleaved so
 that a change in machine load hits every code alike, and prints the median
 loop throughput (particle-steps per second), the ratio plab/peer, and a
-physics check: pair contacts and kinetic energy at the end of each code.
+physics check: pair contacts and kinetic energy at the end of each code (SPH:
+the fluid's mean height instead of contacts, and both must agree within 3 %).
 plab's throughput is from its run summary (the solve loop); the peers' from
 their "Loop time" line. Threads: plab OpenMP threads, peers MPI ranks.
 """
@@ -21,23 +25,34 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
 
+SPH_SCENE = "sph_double_dam_break"
+
+
 def run_plab(plab, scene, threads, steps, work):
     out = os.path.join(work, "plab_out")
-    sc = json.load(open(os.path.join(HERE, scene + ".json")))
+    sph = scene == "sph"
+    sc = json.load(open(os.path.join(HERE, (SPH_SCENE if sph else scene) + ".json")))
     sc["commands"] = [{"cycle": steps}]
+    if sph:  # one history row at the end: the fluid's mean height
+        sc["histories"] = {"every": steps, "record": [
+            {"name": "ymean", "quantity": "group.mean.position.y", "group": "fluid"}]}
     path = os.path.join(work, scene + "_run.json")
     json.dump(sc, open(path, "w"))
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     subprocess.run([plab, "run", path, "--out", out], check=True, env=env,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     s = json.load(open(os.path.join(out, "summary.json")))
+    if sph:
+        rows = open(os.path.join(out, "history.csv")).read().split()
+        return s["particle_steps_per_second"], float(rows[-1].split(",")[-1]), s["energies"]["kinetic"], s["state_hash"]
     pairs = sum(m["active_contacts"] for m in s["models"][:1])  # first rule: grains-grains
     return s["particle_steps_per_second"], pairs, s["energies"]["kinetic"], s["state_hash"]
 
 
 def run_peer(exe, infile, dim, data, threads, steps):
-    cmd = [exe, "-in", os.path.join(HERE, infile), "-var", "dim", str(dim), "-var", "data", data,
-           "-var", "steps", str(steps), "-log", "none"]
+    cmd = [exe, "-in", os.path.join(HERE, infile), "-var", "steps", str(steps), "-log", "none"]
+    if data:
+        cmd += ["-var", "dim", str(dim), "-var", "data", data]
     if threads > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(threads)] + cmd
     env = dict(os.environ, OMP_NUM_THREADS="1")
@@ -54,7 +69,8 @@ def main():
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--steps", type=int, default=20000)
     ap.add_argument("--threads", default="1,2")
-    ap.add_argument("--scenes", default="gran3d,gran2d")
+    ap.add_argument("--scenes", default="gran3d,gran2d,sph")
+    ap.add_argument("--sph-steps", type=int, default=8000)
     ap.add_argument("--codes", default="plab,lammps,liggghts")
     a = ap.parse_args()
     work = tempfile.mkdtemp(prefix="plab_peers_")
@@ -65,31 +81,48 @@ def main():
     for rep in range(a.reps):
         for scene in a.scenes.split(","):
             dim = 3 if scene.endswith("3d") else 2
+            steps = a.sph_steps if scene == "sph" else a.steps
             for t in threads:
                 for code in codes:
+                    if scene == "sph" and code == "lammps":
+                        continue  # no SPH package in Debian's LAMMPS
                     if code == "plab":
-                        r = run_plab(a.plab, scene, t, a.steps, work)
+                        r = run_plab(a.plab, scene, t, steps, work)
+                    elif scene == "sph":
+                        r = run_peer("liggghts", "liggghts_sph.in", dim, None, t, steps)
                     elif code == "lammps":
-                        r = run_peer("lmp", "lammps_gran.in", dim, os.path.join(work, scene + ".data"), t, a.steps)
+                        r = run_peer("lmp", "lammps_gran.in", dim, os.path.join(work, scene + ".data"), t, steps)
                     else:
                         data = os.path.join(work, scene + ("_liggghts" if dim == 2 else "") + ".data")
-                        r = run_peer("liggghts", "liggghts_gran.in", dim, data, t, a.steps)
+                        r = run_peer("liggghts", "liggghts_gran.in", dim, data, t, steps)
                     results.setdefault((scene, t, code), []).append(r)
+                    second = f"fluid mean height {r[1]:.5g} m" if scene == "sph" else f"{r[1]:.0f} pair contacts"
                     print(f"  rep {rep + 1} {scene} {code} x{t}: {r[0] / 1e6:.2f} M particle-steps/s, "
-                          f"{r[1]:.0f} pair contacts, kinetic {r[2]:.4g} J" + (f", hash {r[3]}" if r[3] else ""),
+                          f"{second}, kinetic {r[2]:.4g} J" + (f", hash {r[3]}" if r[3] else ""),
                           flush=True)
-    print(f"\nmedian of {a.reps} interleaved runs, {a.steps} steps, loop throughput in M particle-steps/s")
+    print(f"\nmedian of {a.reps} interleaved runs, {a.steps} steps (sph: {a.sph_steps}), "
+          "loop throughput in M particle-steps/s")
     print("| scene | threads | " + " | ".join(codes) + " | " +
-          " | ".join(f"plab/{c}" for c in codes if c != "plab") + " | pair contacts | kinetic energy, J |")
+          " | ".join(f"plab/{c}" for c in codes if c != "plab") +
+          " | pair contacts (sph: fluid mean height, m) | kinetic energy, J |")
     print("|---" * (3 + 2 * len(codes) - 1 + 1) + "|")
     for scene in a.scenes.split(","):
         for t in threads:
-            med = {c: statistics.median(x[0] for x in results[(scene, t, c)]) for c in codes}
-            last = {c: results[(scene, t, c)][-1] for c in codes}
-            ratios = [f"{med['plab'] / med[c]:.2f}" for c in codes if c != "plab" and "plab" in med]
-            print(f"| {scene} | {t} | " + " | ".join(f"{med[c] / 1e6:.2f}" for c in codes) + " | " +
-                  " | ".join(ratios) + " | " + " / ".join(f"{last[c][1]:.0f}" for c in codes) + " | " +
-                  " / ".join(f"{last[c][2]:.3g}" for c in codes) + " |")
+            have = [c for c in codes if (scene, t, c) in results]
+            med = {c: statistics.median(x[0] for x in results[(scene, t, c)]) for c in have}
+            last = {c: results[(scene, t, c)][-1] for c in have}
+            ratios = [f"{med['plab'] / med[c]:.2f}" if c in med and "plab" in med else "-"
+                      for c in codes if c != "plab"]
+            fmt = "{:.4g}" if scene == "sph" else "{:.0f}"
+            print(f"| {scene} | {t} | " + " | ".join(f"{med[c] / 1e6:.2f}" if c in med else "-" for c in codes) +
+                  " | " + " | ".join(ratios) + " | " + " / ".join(fmt.format(last[c][1]) for c in have) + " | " +
+                  " / ".join(f"{last[c][2]:.4g}" for c in have) + " |")
+            if scene == "sph" and "plab" in last and "liggghts" in last:
+                dh = last["plab"][1] / last["liggghts"][1] - 1
+                dk = last["plab"][2] / last["liggghts"][2] - 1
+                ok = abs(dh) <= 0.03 and abs(dk) <= 0.03
+                print(f"sph x{t}: plab vs LIGGGHTS: fluid mean height {100 * dh:+.2f} %, kinetic energy "
+                      f"{100 * dk:+.2f} % -> {'physics agrees (3 %)' if ok else 'PHYSICS DIFFERS'}")
     if "plab" in codes and len(threads) > 1:
         for scene in a.scenes.split(","):
             hashes = {t: results[(scene, t, "plab")][-1][3] for t in threads}

@@ -96,6 +96,7 @@ struct Sph {
           delta_(p[density_diffusion]) {
         // W(dp) must be positive for eq. 17: a spacing outside the support switches the term off
         if (dp_ >= plab::sph::support_factor(kind_) * h_) anticlump_ = 0;
+        for (int d : {2, 3}) derivative_scale_[d == 3] = plab::sph::normalisation(kind_, d, h_) / h_;
     }
 
     // The host calls the law twice per cycle (rates_stage): first for the
@@ -105,13 +106,14 @@ struct Sph {
 
     void law(const Contact& c) const {
         const Vec3 v_rel = c.rel_velocity();
-        c.set_dt_limit(step_limit(plab::norm(v_rel)));
+        // the force stage's outputs are the ones kept (the host clears them
+        // before each stage): the step limit only there
+        if (!c.rates_stage()) c.set_dt_limit(step_limit(plab::norm(v_rel)));
         if (c.with_wall()) return;  // walls carry no SPH state: use boundary balls (docs/sph.md)
-        const Kernel W{kind_, c.dim(), h_};
         const double r = c.distance();
-        if (r >= W.support()) return;
+        if (r >= support_) return;
         const Vec3 n = c.normal();
-        const double dW = W.derivative(r);  // <= 0
+        const double dW = derivative_scale_[c.dim() == 3] * plab::sph::detail::shape_derivative(kind_, r / h_);  // <= 0
         const double m1 = c.mass1(), m2 = c.mass2();
         const double v_n = plab::dot(v_rel, n);  // < 0 while approaching
 
@@ -123,7 +125,7 @@ struct Sph {
 
         // eqs. 15–16: m_2 dv_2/dt = -m_1 m_2 (p1/ρ1² + p2/ρ2² + Π + R) ∇_2 W_21
         const double p_term = c.field1(pressure) / (rho1 * rho1) + c.field2(pressure) / (rho2 * rho2);
-        double scalar = p_term + anticlump_term(W, r, p_term);
+        double scalar = p_term + anticlump_term(r, c.dim(), p_term);
         // the viscous terms see a no-slip wall ball at its extrapolated velocity (Adami 2012)
         const Vec3 v_visc = v_rel + wall_correction(c, 2) - wall_correction(c, 1);
         if (!laminar_) scalar += monaghan(r, plab::dot(v_visc, n), rho1, rho2);
@@ -165,8 +167,9 @@ private:
     double density_or_rest(double rho) const { return rho > 0 ? rho : rho0_; }
 
     // eq. 17: R_ij = (v_max/c0)² |p_i/ρ_i² + p_j/ρ_j²| (W_ij / W(dp))⁴
-    double anticlump_term(const Kernel& W, double r, double p_term) const {
+    double anticlump_term(double r, int dim, double p_term) const {
         if (anticlump_ <= 0) return 0;
+        const Kernel W{kind_, dim, h_};
         const double ratio = W.value(r) / W.value(dp_);  // finite: dp_ lies inside the support (constructor)
         return anticlump_ * std::fabs(p_term) * ratio * ratio * ratio * ratio;
     }
@@ -183,6 +186,9 @@ private:
     double h_, rho0_, c0_;
     bool laminar_;
     double mu_, alpha_, beta_, anticlump_, dp_, delta_;
+    // kernel constants, once per instance rather than per pair: dW/dr = scale[dim 3] f'(r/h)
+    double support_ = plab::sph::support_factor(kind_) * h_;
+    double derivative_scale_[2] = {0, 0};
 };
 
 } // namespace

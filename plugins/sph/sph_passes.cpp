@@ -59,7 +59,8 @@ struct SphEos {
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 10;  // after sph_density_integration
     enum Prop : int {
-        rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, density_band, prop_count
+        rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, density_band,
+        initial_density, prop_count
     };
     static constexpr plab_property_desc properties[] = {
         rest_density_desc, speed_of_sound_desc, gamma_desc,
@@ -71,6 +72,9 @@ struct SphEos {
         {"density_band", "largest |rho/rho0 - 1| of a fluid ball", "1", 0.05, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
          "the run stops (last good state kept) when a fluid density leaves rho0 (1 +- band); the density error grows "
          "as (v/c0)^2 and g H/c0^2: 0.05 passes c0 = 5 x the largest speed and stops 3 x (docs/stability.md)"},
+        {"initial_density", "set the initial density", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
+         "1: at the first run rho0 / the hydrostatic profile (a state for the continuity equation or the normalised "
+         "summation); 0: keep what the density pass computed (plain summation density, a function of positions)"},
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
     enum Field : int { density, pressure };
@@ -79,7 +83,7 @@ struct SphEos {
     explicit SphEos(const double* p)
         : rho0_(p[rest_density]), gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
           boundary_(int(p[boundary_group])), g_(p[hydrostatic_gravity]), surface_(p[surface_level]),
-          c0_(p[speed_of_sound]), band_(p[density_band]) {}
+          c0_(p[speed_of_sound]), band_(p[density_band]), initialised_(int(p[initial_density]) == 0) {}
 
     void run(const plab_pass_view& v) {
         if (!initialised_) initialise(v);
@@ -143,7 +147,7 @@ private:
     double rho0_, gamma_, b_;
     int boundary_;
     double g_, surface_, c0_, band_;
-    bool initialised_ = false;
+    bool initialised_;
 };
 
 // Boundary pressure by extrapolation from the fluid (Islam eqs. 10–11,
@@ -151,9 +155,15 @@ private:
 // p = 0: each boundary ball w takes
 //   p_w = (Σ_f p_f W_wf + g·Σ_f ρ_f (x_w - x_f) W_wf) / Σ_f W_wf,
 //   ρ_w = ρ0 (p_w/B + 1)^(1/γ),
-// over its fluid neighbours f (walls at rest or at constant velocity:
-// a_w = 0). With p_w = 0 the wall pushes with half the pressure the fluid
-// needs and the first fluid row is over-compressed (docs/sph.md).
+// over its fluid neighbours f, with g - a_w in place of g (Islam eq. 10):
+// a_w is the wall ball's acceleration, from the change of its prescribed
+// velocity since the previous step, a_w = (v_w - v_w,prev)/dt (zero for a
+// wall at rest or at constant velocity). A re-evaluation (dt = 0: start, a
+// `set`, a restart) keeps the stored a_w and takes the velocity as the new
+// reference, so a velocity set by a command is a new motion, not an
+// infinite acceleration, and a restart sees the a_w of the run it continues.
+// With p_w = 0 the wall pushes with half the pressure the fluid needs and
+// the first fluid row is over-compressed (docs/sph.md).
 // No-slip (Adami et al. 2012, eq. 22): the viscous terms see the wall ball
 // at v_w = 2 v_prescribed - ṽ_w, ṽ_w = Σ_f v_f W_wf / Σ_f W_wf, so the
 // velocity interpolated to the wall surface is the wall's own. The pass
@@ -168,7 +178,8 @@ struct SphWallPressure {
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 20;  // after sph_eos
     enum Prop : int {
-        smoothing_length, kernel, rest_density, speed_of_sound, gamma, boundary_group, gx, gy, gz, no_slip, prop_count
+        smoothing_length, kernel, rest_density, speed_of_sound, gamma, boundary_group, gx, gy, gz, no_slip,
+        wall_acceleration, prop_count
     };
     static constexpr plab_property_desc properties[] = {
         {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
@@ -183,20 +194,30 @@ struct SphWallPressure {
         {"no_slip", "no-slip walls", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
          "1: viscous terms see the wall at 2 v_wall - (fluid velocity interpolated to the wall ball) (Adami 2012); "
          "0: at the wall ball's own velocity"},
+        {"wall_acceleration", "wall acceleration term", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
+         "1: g - a_w in the extrapolation (Islam eq. 10), a_w from the wall ball's prescribed velocity history; "
+         "0: g only (a_w = 0)"},
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
-    enum Field : int { density, pressure, wall_dvx };
+    enum Field : int { density, pressure, wall_dvx, wall_ax = wall_dvx + 3, wall_vx_prev = wall_ax + 3 };
     static constexpr plab_field_desc fields[] = {
         {"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0},
         {"sph_wall_velocity_correction_x", "m/s", 0.0}, {"sph_wall_velocity_correction_y", "m/s", 0.0},
-        {"sph_wall_velocity_correction_z", "m/s", 0.0}};
+        {"sph_wall_velocity_correction_z", "m/s", 0.0},
+        // fields rather than pass state: checkpoints and the last good state carry them
+        {"sph_wall_acceleration_x", "m/s2", 0.0}, {"sph_wall_acceleration_y", "m/s2", 0.0},
+        {"sph_wall_acceleration_z", "m/s2", 0.0},
+        {"sph_wall_velocity_previous_x", "m/s", 0.0}, {"sph_wall_velocity_previous_y", "m/s", 0.0},
+        {"sph_wall_velocity_previous_z", "m/s", 0.0}};
 
     explicit SphWallPressure(const double* p)
         : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), rho0_(p[rest_density]),
           gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
-          boundary_(int(p[boundary_group])), g_{p[gx], p[gy], p[gz]}, no_slip_(int(p[no_slip]) == 1) {}
+          boundary_(int(p[boundary_group])), g_{p[gx], p[gy], p[gz]}, no_slip_(int(p[no_slip]) == 1),
+          accelerating_(int(p[wall_acceleration]) == 1) {}
 
     void run(const plab_pass_view& v) {
+        if (accelerating_) update_wall_acceleration(v);
         const plab::sph::Kernel W{kind_, int(v.dim), h_};
         weighted_.assign(v.body_count, 0.0);
         weights_.assign(v.body_count, 0.0);
@@ -212,7 +233,9 @@ struct SphWallPressure {
             const double* xf = v.position + 3 * f;
             const double d[3] = {xw[0] - xf[0], xw[1] - xf[1], xw[2] - xf[2]};
             const double kernel_value = W.value(std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
-            const double g_dot_d = g_[0] * d[0] + g_[1] * d[1] + g_[2] * d[2];
+            double g_dot_d = g_[0] * d[0] + g_[1] * d[1] + g_[2] * d[2];
+            if (accelerating_)  // (g - a_w)·(x_w - x_f), Islam eq. 10
+                for (int c = 0; c < 3; ++c) g_dot_d -= v.fields[wall_ax + c][w] * d[c];
             weighted_[w] += (p[f] + rho[f] * g_dot_d) * kernel_value;
             weights_[w] += kernel_value;
             for (int c = 0; c < 3; ++c) fluid_velocity_[3 * w + c] += v.velocity[3 * f + c] * kernel_value;
@@ -229,11 +252,25 @@ struct SphWallPressure {
     }
 
 private:
+    // a_w = (v - v_prev)/dt per boundary ball; dt = 0 (a re-evaluation)
+    // keeps a_w and takes v as the new reference
+    void update_wall_acceleration(const plab_pass_view& v) const {
+        for (uint32_t i = 0; i < v.body_count; ++i) {
+            if (v.group[i] != boundary_) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double u = v.velocity[3 * i + c];
+                double& prev = v.fields[wall_vx_prev + c][i];
+                if (v.dt > 0) v.fields[wall_ax + c][i] = (u - prev) / v.dt;
+                prev = u;
+            }
+        }
+    }
+
     plab::sph::KernelKind kind_;
     double h_, rho0_, gamma_, b_;
     int boundary_;
     double g_[3];
-    bool no_slip_;
+    bool no_slip_, accelerating_;
     std::vector<double> weighted_, weights_, fluid_velocity_;
 };
 
@@ -261,8 +298,158 @@ private:
     int boundary_;
 };
 
+// Summation density (thesis eq. 8), ρ_i = Σ_j m_j W_ij over every ball
+// within the support, the ball itself included (W_ii = W(0)), or its
+// normalised form (eq. 9, Shepard; Randles & Libersky 1996)
+// ρ_i = Σ_j m_j W_ij / Σ_j (m_j/ρ_j) W_ij, with ρ_j as the pass finds it.
+// Fixed boundary balls contribute to the fluid's sums (thesis §2.2.4,
+// LIGGGHTS' sph/density/summation) but keep their own density (ρ0, or the
+// wall pressure pass's).
+//  * Plain (eq. 8): instead of sph_density_integration; the density is a
+//    function of the positions, recomputed every step before the EOS. It
+//    underestimates the density where the support is truncated (free
+//    surface: about 0.76 ρ0 on the top row of a resting lattice).
+//  * Normalised (eq. 9): ρ_i is a weighted harmonic mean of the ρ_j, so
+//    alone it cannot see a compression (a uniformly compressed lattice
+//    keeps ρ_i = ρ_j). It is therefore a Shepard filter on the density of
+//    the continuity equation: run it after sph_density_integration (stage
+//    5 > 0). It removes the free-surface deficit (ρ0 at every particle of
+//    a uniform fluid) and smooths the density noise of eq. 7.
+// Every active pair within the support counts, whatever its model: not
+// for scenes with DEM grains inside the fluid.
+struct SphDensitySummation {
+    static constexpr const char* name = "sph_density_summation";
+    static constexpr const char* doc =
+        "Summation density rho_i = sum_j m_j W_ij (thesis eq. 8; instead of sph_density_integration), or normalised "
+        "by sum_j (m_j/rho_j) W_ij (eq. 9; a Shepard filter after sph_density_integration), every step before the "
+        "EOS. Boundary balls contribute and keep their density.";
+    static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
+    static constexpr uint32_t stage = 5;  // after sph_density_integration (0), before sph_eos (10)
+    enum Prop : int { smoothing_length, kernel, boundary_group, normalised, prop_count };
+    static constexpr plab_property_desc properties[] = {
+        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"},
+        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
+        boundary_group_desc,
+        {"normalised", "normalised summation", "1", 0.0, 0.0, 1.0, PLAB_INTEGER,
+         "0: rho_i = sum m_j W_ij (eq. 8); 1: divided by sum (m_j/rho_j) W_ij (eq. 9, Shepard filter of the "
+         "continuity density: use with sph_density_integration)"},
+    };
+    static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
+    enum Field : int { density };
+    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}};
+
+    explicit SphDensitySummation(const double* p)
+        : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), boundary_(int(p[boundary_group])),
+          normalised_(int(p[normalised]) == 1) {}
+
+    void run(const plab_pass_view& v) {
+        const plab::sph::Kernel W{kind_, int(v.dim), h_};
+        const double support2 = W.support() * W.support(), w0 = W.value(0);
+        double* rho = v.fields[density];
+        mass_sum_.assign(v.body_count, 0.0);
+        volume_sum_.assign(normalised_ ? v.body_count : 0, 0.0);
+        for (uint32_t k = 0; k < v.contact_count; ++k) {
+            if (v.contact_end2_is_wall[k]) continue;
+            const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
+            const double* xi = v.position + 3 * i;
+            const double* xj = v.position + 3 * j;
+            const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+            const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if (r2 >= support2) continue;
+            const double w = W.value(std::sqrt(r2));
+            mass_sum_[i] += v.mass[j] * w;
+            mass_sum_[j] += v.mass[i] * w;
+            if (!normalised_) continue;
+            volume_sum_[i] += v.mass[j] / rho[j] * w;
+            volume_sum_[j] += v.mass[i] / rho[i] * w;
+        }
+        for (uint32_t i = 0; i < v.body_count; ++i) {
+            if (v.group[i] == boundary_) continue;
+            const double mass = mass_sum_[i] + v.mass[i] * w0;  // eq. 8 includes j = i
+            rho[i] = normalised_ ? mass / (volume_sum_[i] + v.mass[i] / rho[i] * w0) : mass;
+        }
+    }
+
+private:
+    plab::sph::KernelKind kind_;
+    double h_;
+    int boundary_;
+    bool normalised_;
+    std::vector<double> mass_sum_, volume_sum_;
+};
+
+// XSPH (thesis eq. 18; Monaghan 1989): a particle moves with its velocity
+// smoothed over its neighbours,
+//   dx_i/dt = v_i + ε Σ_j m_j (v_j - v_i) W_ij / ρ̄_ij,   ρ̄_ij = (ρ_i + ρ_j)/2,
+// with v at the half step. The pass runs before the drift (phase PRE_DRIFT,
+// ABI 3) and writes the correction into the host's drift velocity
+// correction fields; the velocity itself (momentum, kinetic energy) is
+// untouched. Fluid–fluid pairs only: boundary balls neither receive nor give
+// a correction, so Σ m_i δv_i = 0 exactly (each pair adds ±ε m_i m_j (v_j -
+// v_i) W/ρ̄) and the fluid's centre of mass drifts with its momentum.
+struct SphXsph {
+    static constexpr const char* name = "sph_xsph";
+    static constexpr const char* doc =
+        "XSPH (thesis eq. 18): the drift moves a fluid ball with v_i + eps sum_j m_j (v_j - v_i) W_ij / rho_ij, "
+        "fluid-fluid pairs, half-step velocities; the velocity itself is unchanged.";
+    static constexpr uint32_t phase = PLAB_PHASE_PRE_DRIFT;
+    static constexpr uint32_t stage = 0;
+    enum Prop : int { smoothing_length, kernel, boundary_group, epsilon, prop_count };
+    static constexpr plab_property_desc properties[] = {
+        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"},
+        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
+        boundary_group_desc,
+        {"epsilon", "XSPH coefficient", "1", 0.5, 0.0, 1.0, 0,
+         "eps of eq. 18; 0.5 is usual, large values slow the flow unphysically (thesis 2.2.3)"},
+    };
+    static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
+    enum Field : int { density, dvx, dvy, dvz };
+    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0},
+                                                 {PLAB_DRIFT_CORRECTION_X, "m/s", 0.0},
+                                                 {PLAB_DRIFT_CORRECTION_Y, "m/s", 0.0},
+                                                 {PLAB_DRIFT_CORRECTION_Z, "m/s", 0.0}};
+
+    explicit SphXsph(const double* p)
+        : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), boundary_(int(p[boundary_group])),
+          epsilon_(p[epsilon]) {}
+
+    void run(const plab_pass_view& v) const {
+        const plab::sph::Kernel W{kind_, int(v.dim), h_};
+        const double support2 = W.support() * W.support();
+        const double* rho = v.fields[density];
+        double* dv[3] = {v.fields[dvx], v.fields[dvy], v.fields[dvz]};
+        for (int c = 0; c < 3; ++c) std::fill(dv[c], dv[c] + v.body_count, 0.0);
+        for (uint32_t k = 0; k < v.contact_count; ++k) {
+            if (v.contact_end2_is_wall[k]) continue;
+            const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
+            if (v.group[i] == boundary_ || v.group[j] == boundary_) continue;
+            const double* xi = v.position + 3 * i;
+            const double* xj = v.position + 3 * j;
+            const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+            const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if (r2 >= support2) continue;
+            const double s = epsilon_ * W.value(std::sqrt(r2)) / (0.5 * (rho[i] + rho[j]));
+            for (int c = 0; c < 3; ++c) {
+                const double v_ji = v.velocity[3 * j + c] - v.velocity[3 * i + c];
+                dv[c][i] += s * v.mass[j] * v_ji;
+                dv[c][j] -= s * v.mass[i] * v_ji;
+            }
+        }
+    }
+
+private:
+    plab::sph::KernelKind kind_;
+    double h_;
+    int boundary_;
+    double epsilon_;
+};
+
 } // namespace
 
 PLAB_PLUGIN(plab::add_pass<SphEos>(r) != 0     ? 1
             : plab::add_pass<SphWallPressure>(r) != 0 ? 1
-                                                 : plab::add_pass<SphDensityIntegration>(r))
+            : plab::add_pass<SphDensityIntegration>(r) != 0 ? 1
+            : plab::add_pass<SphDensitySummation>(r) != 0 ? 1
+                                                 : plab::add_pass<SphXsph>(r))

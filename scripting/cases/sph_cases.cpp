@@ -25,9 +25,12 @@ constexpr double g = 9.81, rho0 = 1000.0, gamma_tait = 7.0;
 constexpr int fluid_group = 0, boundary_group = 1;  // order of first naming in `bodies`
 
 double depth(const StaticTankSpec& s) { return s.rows * s.spacing; }
+double effective_gravity(const StaticTankSpec& s) { return g + s.tank_acceleration; }  // in the tank's frame
 double sound_speed(const StaticTankSpec& s) {
-    return s.speed_of_sound > 0 ? s.speed_of_sound : 10.0 * std::sqrt(2 * g * depth(s));
+    return s.speed_of_sound > 0 ? s.speed_of_sound : 10.0 * std::sqrt(2 * effective_gravity(s) * depth(s));
 }
+// how far the tank has risen at time t (driven exactly as ½ a t², static_tank())
+double tank_rise(const StaticTankSpec& s, double t) { return 0.5 * s.tank_acceleration * t * t; }
 
 } // namespace
 
@@ -35,6 +38,15 @@ json boundary_block(double x0, double y0, double x1, double y1, double db, doubl
     return {{"type", "lattice"}, {"group", "boundary"}, {"packing", "square"},
             {"box", {{"min", {x0, y0}}, {"max", {x1, y1}}}}, {"radius", db / 2}, {"spacing", db},
             {"mass", rest_density * db * db}, {"fix", {"all"}}};
+}
+
+json density_passes(int method, int boundary) {
+    const json integration = {{"name", "sph_density_integration"}, {"properties", {{"boundary_group", boundary}}}};
+    const json summation = {{"name", "sph_density_summation"}, {"material", "water"},
+                            {"properties", {{"boundary_group", boundary}, {"normalised", method == 2 ? 1 : 0}}}};
+    if (method == 0) return json::array({integration});
+    if (method == 1) return json::array({summation});
+    return json::array({integration, summation});  // eq. 9 filters the continuity density
 }
 
 json static_tank_scene(const StaticTankSpec& s) {
@@ -46,12 +58,21 @@ json static_tank_scene(const StaticTankSpec& s) {
                         {"rest_density", rho0}, {"speed_of_sound", c0}, {"gamma", gamma_tait}};
     const json sph = {{"viscosity", s.alpha > 0 ? 1 : 0}, {"mu", s.viscosity}, {"alpha", s.alpha}};
     json passes = {{{"name", "sph_eos"}, {"material", "water"},
-                    {"properties", {{"boundary_group", boundary_group}, {"hydrostatic_gravity", g}, {"surface_level", H}}}},
-                   {{"name", "sph_density_integration"}, {"properties", {{"boundary_group", boundary_group}}}}};
+                    {"properties", {{"boundary_group", boundary_group}, {"hydrostatic_gravity", effective_gravity(s)}, {"surface_level", H},
+                                    // plain summation: the top rows sit below rho0; its density
+                                    // follows from the positions, no initial profile (docs/sph.md)
+                                    {"density_band", s.density == 1 ? 0.2 : 0.05},
+                                    {"initial_density", s.density == 1 ? 0 : 1}}}},
+                  };
+    for (const json& d : density_passes(s.density, boundary_group)) passes.push_back(d);
     if (s.wall_pressure)
         passes.push_back({{"name", "sph_wall_pressure"}, {"material", "water"},
-                          {"properties", {{"boundary_group", boundary_group}}}});
+                          {"properties", {{"boundary_group", boundary_group},
+                                          {"wall_acceleration", s.wall_acceleration_term ? 1 : 0}}}});
+    json timestep = json::object();
+    if (s.tank_acceleration > 0) timestep["fixed"] = 0.2 * h / c0;  // the drive below needs the step ahead
     return {{"description", "static tank, thesis 5.1 / Table 1"},
+            {"timestep", timestep},
             {"dimension", 2},
             {"gravity", {0, -g}},
             {"plugins", {"sph", "sph_passes"}},
@@ -73,11 +94,11 @@ namespace {
 // Relative L2 distance of pressures p at heights y from ρ0 g (H - y), over
 // the fluid balls below the top two rows (the free surface truncates the kernel).
 double hydrostatic_l2(const World& w, const std::vector<Vec>& start, const std::vector<double>& p,
-                      const std::vector<double>& y, double H, double dp) {
+                      const std::vector<double>& y, double H, double dp, double g_eff) {
     double err2 = 0, ref2 = 0;
     for (std::size_t i = 0; i < w.bodies.size(); ++i) {
         if (w.bodies.group[i] != fluid_group || start[i].y() > H - 2 * dp) continue;
-        const double exact = rho0 * g * (H - y[i]);
+        const double exact = rho0 * g_eff * (H - y[i]);
         err2 += (p[i] - exact) * (p[i] - exact);
         ref2 += exact * exact;
     }
@@ -97,12 +118,17 @@ StaticTankResult static_tank(const StaticTankSpec& s) {
     double window = 0;
     const std::clock_t c_start = std::clock();
     while (w.time < s.end_time) {
+        if (s.tank_acceleration > 0)  // prescribed motion: v(t + dt/2) over the step, x = ½ a t² exactly
+            for (std::size_t i = 0; i < n; ++i)
+                if (w.bodies.group[i] == boundary_group)
+                    w.bodies.velocity[i].y() = s.tank_acceleration * (w.time + 0.5 * w.fixed_dt);
         w.step();
         if (w.time < 0.8 * s.end_time) continue;
         const std::vector<double>& p = w.field(w.field_index("sph_pressure"));
+        const double rise = tank_rise(s, w.time);  // heights in the tank's frame
         for (std::size_t i = 0; i < n; ++i) {
             p_sum[i] += p[i] * w.last_dt;
-            y_sum[i] += w.bodies.position[i].y() * w.last_dt;
+            y_sum[i] += (w.bodies.position[i].y() - rise) * w.last_dt;
         }
         window += w.last_dt;
     }
@@ -112,19 +138,21 @@ StaticTankResult static_tank(const StaticTankSpec& s) {
     const double dp = s.spacing, W = s.columns * dp, H = depth(s);
     std::vector<double> y_now(n);
     r.min_wall_clearance = 1e300;
+    const Vec rise(0, tank_rise(s, w.time), 0);
     for (std::size_t i = 0; i < n; ++i) {
         p_sum[i] /= window;
         y_sum[i] /= window;
-        y_now[i] = w.bodies.position[i].y();
+        y_now[i] = w.bodies.position[i].y() - rise.y();
         if (w.bodies.group[i] != fluid_group) { ++r.boundary; continue; }
         ++r.fluid;
-        const Vec& x = w.bodies.position[i];
+        const Vec x = w.bodies.position[i] - rise;
         r.max_displacement = std::max(r.max_displacement, (x - start[i]).norm());
-        r.max_speed = std::max(r.max_speed, w.bodies.velocity[i].norm());
+        r.max_speed = std::max(r.max_speed, (w.bodies.velocity[i] - Vec(0, s.tank_acceleration * w.time, 0)).norm());
         r.min_wall_clearance = std::min({r.min_wall_clearance, x.x(), W - x.x(), x.y()});
     }
-    r.pressure_l2 = hydrostatic_l2(w, start, p_sum, y_sum, H, dp);
-    r.pressure_l2_instant = hydrostatic_l2(w, start, w.field(w.field_index("sph_pressure")), y_now, H, dp);
+    r.pressure_l2 = hydrostatic_l2(w, start, p_sum, y_sum, H, dp, effective_gravity(s));
+    r.pressure_l2_instant =
+        hydrostatic_l2(w, start, w.field(w.field_index("sph_pressure")), y_now, H, dp, effective_gravity(s));
     return r;
 }
 

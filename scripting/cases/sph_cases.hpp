@@ -11,6 +11,11 @@ namespace plab::cases {
 // spacing db, mass rho0 db², every degree of freedom fixed, group "boundary".
 nlohmann::json boundary_block(double x0, double y0, double x1, double y1, double db, double rho0 = 1000.0);
 
+// The density passes of a scene whose material is "water": method 0 the
+// continuity equation (thesis eq. 7, sph_density_integration), 1 summation
+// (eq. 8), 2 continuity filtered by the normalised summation (eq. 9).
+nlohmann::json density_passes(int method, int boundary_group);
+
 // Thesis §5.1, Table 1: a 2D tank of fluid at rest under gravity, walls of
 // fixed boundary balls (thesis §2.2.4) at half the fluid spacing, density
 // initialised hydrostatically by the inverse EOS.
@@ -25,6 +30,12 @@ struct StaticTankSpec {
     double alpha = 0;              // > 0: Monaghan artificial viscosity instead of the laminar one
     double end_time = 1.0;         // s
     bool wall_pressure = true;     // boundary pressure extrapolated (Islam eqs. 10-11); false: thesis p = 0
+    int density = 0;               // 0 continuity (eq. 7), 1 summation (eq. 8), 2 continuity + normalised summation (eq. 9)
+    // > 0: the tank accelerates upward at this rate from rest (m/s²), its
+    // boundary balls driven v = a (t + dt/2) at a fixed step; the fluid
+    // should hold p = ρ0 (g + a)(H - y) relative to the tank
+    double tank_acceleration = 0;
+    bool wall_acceleration_term = true;  // sph_wall_pressure's (g - a_w) (Islam eq. 10); false: g only
 };
 
 struct StaticTankResult {
@@ -58,6 +69,8 @@ struct DamBreakSpec {
     int dim = 2;
     double boundary_ratio = 0.5;  // boundary-ball spacing / dp (thesis: 1/2; Islam: 1)
     double depth = 0.04;          // 3D: column thickness between the free-slip side walls, m
+    double xsph = 0;              // > 0: XSPH with this epsilon (thesis eq. 18, sph_xsph pass)
+    int density = 0;              // as StaticTankSpec::density (0 continuity, 2 with the eq. 9 filter)
 };
 
 struct DamBreakResult {
@@ -65,6 +78,9 @@ struct DamBreakResult {
     double mean_error = 0, max_error = 0;
     long fluid = 0, steps = 0;
     double cpu_seconds = 0;
+    // particle disorder at the end: coefficient of variation (std/mean) of
+    // each fluid ball's distance to its nearest fluid neighbour (0: a lattice)
+    double disorder = 0;
 };
 
 nlohmann::json dam_break_scene(const DamBreakSpec& s);

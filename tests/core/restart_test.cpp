@@ -65,10 +65,17 @@ json plate_scene() {
                                                 {"sigma_ult", 5e6}, {"radius", 0.001}}}}}}};
 }
 
-json tank_scene() {
+// with_options: also XSPH (a pre-drift pass, the drift velocity
+// correction) and the normalised summation density filter
+json tank_scene(bool with_options = false) {
     json scene = read_scene_file(std::string(PLAB_SOURCE_DIR) + "/examples/sph/static_tank.json");
     scene.erase("commands");
     scene.erase("output");
+    if (with_options) {
+        scene["passes"].push_back({{"name", "sph_xsph"}, {"material", "water"}, {"properties", {{"boundary_group", 1}}}});
+        scene["passes"].push_back({{"name", "sph_density_summation"}, {"material", "water"},
+                                   {"properties", {{"boundary_group", 1}, {"normalised", 1}}}});
+    }
     return scene;
 }
 
@@ -150,15 +157,18 @@ TEST_CASE("a plate whose bonds break restarts bit-identically, break log include
     }
 }
 
-TEST_CASE("an SPH tank restarts bit-identically (fields and the EOS pass state carried), 1 and 2 threads",
+TEST_CASE("an SPH tank restarts bit-identically (fields and the EOS pass state carried, with XSPH too), 1 and 2 threads",
           "[restart][sph]") {
     ThreadsBack back;
     for (int threads : {1, 2}) {
         INFO(threads << " threads");
         use_threads(threads);
-        const Outcome whole = uninterrupted(tank_scene(), false, 60);
-        const Outcome resumed = interrupted(tank_scene(), false, 27, 60, "tank.plab");
-        CHECK(resumed.hash == whole.hash);
+        for (bool options : {false, true}) {
+            INFO((options ? "with XSPH and the summation density filter" : "continuity only"));
+            const Outcome whole = uninterrupted(tank_scene(options), false, 60);
+            const Outcome resumed = interrupted(tank_scene(options), false, 27, 60, "tank.plab");
+            CHECK(resumed.hash == whole.hash);
+        }
     }
 }
 

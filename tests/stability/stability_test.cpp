@@ -193,7 +193,7 @@ TEST_CASE("impact from 0.01 to 100 m/s on a bonded plate: elastic and intact at 
     }
 }
 
-TEST_CASE("bond calibration with nu approaching 1/3 stays stable; nu above 1/3 is refused", "[stability][bonds]") {
+TEST_CASE("bond calibration with nu approaching 1/3 stays stable, nu above 1/3 is refused", "[stability][bonds]") {
     for (double nu : {0.25, 0.33, 0.3333}) {
         auto sim = plate(1.0, nu);
         const Outcome o = run(*sim, 1000);
@@ -281,7 +281,7 @@ long steps_for(Simulation& sim, double seconds) {
 
 } // namespace
 
-TEST_CASE("SPH: 0.5, 0.9, 1.1 and 2 x the CFL step (0.25 h/c0) are stable (the CFL number 0.25 is a margin); 8 x stops with the timestep named",
+TEST_CASE("SPH: 0.5, 0.9, 1.1 and 2 x the CFL step (0.25 h/c0) are stable (the CFL number 0.25 is a margin), 8 x stops with the timestep named",
           "[stability][sph]") {
     for (double f : {0.5, 0.9, 1.1, 2.0, 8.0}) {
         Simulation sim(small_dam_break(10));
@@ -298,7 +298,7 @@ TEST_CASE("SPH: 0.5, 0.9, 1.1 and 2 x the CFL step (0.25 h/c0) are stable (the C
     }
 }
 
-TEST_CASE("SPH: c0 = 5, 10 and 20 x the largest speed run; 3 x stops on the density band (issue 4)", "[stability][sph]") {
+TEST_CASE("SPH: c0 = 5, 10 and 20 x the largest speed run, 3 x stops on the density band (issue 4)", "[stability][sph]") {
     for (double m : {5.0, 10.0, 20.0}) {
         Simulation sim(small_dam_break(m));
         sim.set_quiet(true);

@@ -18,6 +18,13 @@
  *      pass's message and keeps the last good state. plab_registrar gains
  *      register_pass_state (checkpoints of pass state); a plug-in that calls
  *      it must be loaded by a host that provides it (ABI 2 or later).
+ *   3  phase PLAB_PHASE_PRE_DRIFT (after the first half kick, before the
+ *      drift) and the drift velocity correction: when passes register the
+ *      per-body fields "drift_velocity_correction_x/_y/_z" (m/s), the drift
+ *      moves each body by (v + correction) dt along its free translational
+ *      degrees of freedom (SPH's XSPH, thesis eq. 18). A pass of that phase
+ *      needs a host of ABI 3 or later; nothing else changed, so ABI 1 and 2
+ *      plug-ins load unchanged.
  *
  * Contact models are called once per *batch* of contacts over host-owned
  * structure-of-arrays data (plab_contact_batch). Passes are called once per
@@ -36,7 +43,7 @@
 extern "C" {
 #endif
 
-#define PLAB_ABI_VERSION 2u
+#define PLAB_ABI_VERSION 3u
 #define PLAB_ABI_OLDEST 1u /* oldest plug-in ABI this host still loads */
 
 /* ---- descriptions ------------------------------------------------------ */
@@ -190,6 +197,15 @@ typedef struct plab_contact_model_desc {
 #define PLAB_PHASE_POST_FORCE 1u /* after forces are summed onto bodies */
 #define PLAB_PHASE_INTEGRATE 2u  /* after the law of motion, integrate own fields */
 #define PLAB_PHASE_RATES_DONE 3u /* after the rates stage, before forces: rates → states */
+/* since ABI 3: after the first half kick (velocities at t + dt/2, positions
+ * and contacts of the last force pass), before the drift; a pass of this
+ * phase may fill the fields named below, which the drift adds to the
+ * velocity it moves a body with (e.g. XSPH, thesis eq. 18). The velocity
+ * itself is not changed: momentum and kinetic energy stay the leapfrog's. */
+#define PLAB_PHASE_PRE_DRIFT 4u
+#define PLAB_DRIFT_CORRECTION_X "drift_velocity_correction_x"
+#define PLAB_DRIFT_CORRECTION_Y "drift_velocity_correction_y"
+#define PLAB_DRIFT_CORRECTION_Z "drift_velocity_correction_z"
 
 typedef struct plab_pass_view {
     uint32_t dim;

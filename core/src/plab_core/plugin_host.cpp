@@ -247,7 +247,7 @@ int PluginHost::register_pass(const plab_pass_desc* d) {
     const std::string name = d->name && *d->name ? d->name : "?";
     if (name == "?") bad.push_back("pass has no name");
     if (!d->run) bad.push_back("pass has no run function");
-    if (d->phase > PLAB_PHASE_RATES_DONE) bad.push_back("pass has an unknown phase");
+    if (d->phase > PLAB_PHASE_PRE_DRIFT) bad.push_back("pass has an unknown phase");
     if (!bad.empty()) { problems_.push_back("pass '" + name + "': " + join(bad, "; ")); return 1; }
     if (models_.count(name) || passes_.count(name)) {
         const std::string other = models_.count(name) ? model_lib_[name] : pass_lib_[name];

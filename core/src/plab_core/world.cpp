@@ -260,6 +260,7 @@ void World::advance() {
     {
         PhaseTimer t{phase_seconds[ph_motion]};
         kick(0.5 * dt);
+        run_passes(PLAB_PHASE_PRE_DRIFT);  // e.g. XSPH: a drift velocity correction from v(t + dt/2)
         drift(dt);
         wall_motion_since_build_ += walls.move(dt, dim);
     }
@@ -328,13 +329,24 @@ void World::kick(double h) {
     }
 }
 
+// x += (v + correction) dt; the correction (abi.h, PLAB_PHASE_PRE_DRIFT) only
+// where a pass registered its fields, and only along free translational DOFs.
 void World::drift(double dt) {
     const std::size_t n = bodies.size();
     double body_work = 0;
     const Vec lo = baseline_.lo, hi = baseline_.hi;
     bool out = false;
+    const int cx = field_index(PLAB_DRIFT_CORRECTION_X), cy = field_index(PLAB_DRIFT_CORRECTION_Y),
+              cz = field_index(PLAB_DRIFT_CORRECTION_Z);
+    const bool corrected = cx >= 0 && cy >= 0 && cz >= 0;
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec dx = bodies.velocity[i] * dt;
+        Vec dx = bodies.velocity[i] * dt;
+        if (corrected) {
+            const std::uint8_t fix = bodies.fixity[i];
+            const double c[3] = {fields_[cx][i], fields_[cy][i], fields_[cz][i]};
+            for (int k = 0; k < 3; ++k)
+                if (!(fix & (dof_x << k))) dx[k] += c[k] * dt;
+        }
         Vec& x = bodies.position[i];
         x += dx;
         body_work += bodies.mass[i] * gravity.dot(dx);  // exact for a constant force
