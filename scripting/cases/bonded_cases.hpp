@@ -24,7 +24,8 @@ struct Cantilever {
     // 2√3 R²): RMS of the difference over the RMS of the beam-theory stress
     double fibre_stress_error = 0;
     double fibre_stress_scale = 0;  // RMS of -M y / I over those balls, Pa
-    double first_break_load = 0;  // by linearity: P σc / max σ over bonds, N
+    double first_break_load = 0;  // by linearity: P σc / max σ over bonds (eq. 49 with the scene's β̄), N
+    double first_break_load_centre = 0;  // the same with β̄ = 0: the stress at the bond's centre line, N
     double break_x = 0, break_y = 0;  // where that bond is, m
     bool break_in_tension = false;
     double strength_load = 0;  // σ_ult h² / (6 L), N
@@ -42,8 +43,9 @@ struct Cantilever {
 // clamp_rotation false: the clamped balls keep their spin free (a pinned row).
 // tension: the calibration's strength rule, "across_bonds" (thesis eq. 43) or
 // "along_bonds" (see scripting/calibration.cpp)
+// moment_factor: β̄ of eq. 49 (the thesis sets it to 0)
 Cantilever static_cantilever(double radius, double load, double ratio, const std::string& tension = "across_bonds",
-                             bool clamp_rotation = true);
+                             double moment_factor = 0.0, bool clamp_rotation = true);
 
 struct VelocityFailure {
     double reaction = 0;     // force on the driven ball when the first bond broke, N
@@ -54,7 +56,8 @@ struct VelocityFailure {
 };
 // The thesis failure test: the bottom-right ball driven upward at `velocity`
 // with local damping until the first bond breaks.
-VelocityFailure velocity_failure(double radius, double velocity, const std::string& tension = "across_bonds");
+VelocityFailure velocity_failure(double radius, double velocity, const std::string& tension = "across_bonds",
+                                 double moment_factor = 0.0);
 
 struct Impact {
     double input_energy = 0;      // kinetic energy of the projectile, J
