@@ -73,6 +73,7 @@ struct GateFractureSpec {
     // sigma_ult of the hexagonal calibration, Pa: its shear strength (eq. 44, 0.0037 sigma_ult at nu 0.33,
     // 5.2 kPa) just below the peak clamp shear stress of an unbreakable gate (5.5-6 kPa at 0.11-0.14 s)
     double strength = 1.4e6;
+    double density_band = 0;  // sph_eos density band; 0: its default (5 %)
     double end_time = 0.2;   // s
 };
 

@@ -77,6 +77,9 @@ json gate_fracture_scene(const GateFractureSpec& s) {
     // clamp: the two bottom rows (centres at R and R + √3 R)
     scene["commands"][1]["set"]["region"] = {{"min", {gate_x0, -R}}, {"max", {gate_x1, 2.8 * R}}};
     scene["histories"]["record"].push_back({{"name", "broken"}, {"quantity", "bonds.broken"}});
+    if (s.density_band > 0)
+        for (json& pass : scene["passes"])
+            if (pass["name"] == "sph_eos") pass["properties"]["density_band"] = s.density_band;
     return scene;
 }
 

@@ -313,22 +313,24 @@ TEST_CASE("a structure floor in the SPH sums carries the weight of the water abo
 }
 
 // Not part of the test run (hidden tag): gate fracture at chosen settings,
-// PLAB_STUDY="dp:R:end:strength[:pressure_mode]", comma-separated.
+// PLAB_STUDY="dp:R:end:strength[:pressure_mode[:density_band]]", comma-separated.
 TEST_CASE("gate fracture study", "[.gate_fracture_study]") {
     const char* env = std::getenv("PLAB_STUDY");
     std::stringstream ss(env ? env : "0.005:0.000833333:0.15:1.4e6");
     std::string item;
     while (std::getline(ss, item, ',')) {
         cases::GateFractureSpec s;
-        double v[5] = {0.005, 0.000833333, 0.15, 1.4e6, 2};
+        double v[6] = {0.005, 0.000833333, 0.15, 1.4e6, 2, 0};
         std::stringstream is(item);
         std::string tok;
-        for (int k = 0; k < 5 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
+        for (int k = 0; k < 6 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
         s.spacing = v[0]; s.gate_radius = v[1]; s.end_time = v[2]; s.strength = v[3]; s.pressure_mode = int(v[4]);
+        s.density_band = v[5];
         const cases::GateFractureResult r = cases::gate_fracture(s);
-        std::printf("dp %.4f R %.5f strength %.3g: %ld of %ld broken, first at %.3f s y %.4f; x [%.4f, %.4f], min y %.4f, "
+        std::printf("dp %.4f R %.5f strength %.3g: %ld of %ld broken, first at %.3f s y %.4f mode %d; x [%.4f, %.4f], min y %.4f, "
                     "penetrated %d; %ld steps, %.0f s CPU\n",
-                    s.spacing, s.gate_radius, s.strength, r.broken, r.bonds, r.first_break_time, r.first_break_y, r.min_x,
+                    s.spacing, s.gate_radius, s.strength, r.broken, r.bonds, r.first_break_time, r.first_break_y,
+                    r.first_break_mode, r.min_x,
                     r.max_x, r.min_y, int(r.penetrated), r.steps, r.cpu_seconds);
         std::fflush(stdout);
     }
