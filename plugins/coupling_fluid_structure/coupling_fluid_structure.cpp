@@ -13,7 +13,14 @@
 //      Islam eqs. 10–11): p_s = (Σ_f p_f W_sf + (g - a_s)·Σ_f ρ_f (x_s - x_f) W_sf) / Σ_f W_sf,
 //      ρ_s = ρ0 (p_s/B + 1)^(1/γ), with a_s the ball's acceleration of the
 //      last cycle (force / mass). A structure ball with no fluid neighbour
-//      gets p = 0, ρ = ρ0.
+//      gets p = 0, ρ = ρ0;
+//   2  as 1 without the ball's acceleration, (g·(x_s - x_f)) only. A lattice
+//      ball's F/m is dominated by its bond vibration (periods of ~0.1 ms,
+//      accelerations of 1e4 m/s² against the surface's few m/s²), which mode 1
+//      turns into pressure noise of ρ |a| h ≈ 3e4 Pa — enough to pull a
+//      free-standing gate's balls below 0.75 ρ0 (gate_fracture, unbreakable
+//      bonds, R 0.625 mm: unstable at 19 ms in mode 1, stable in mode 2).
+//      The surface's own acceleration adds ρ a h ≈ 10 Pa: neglected.
 // With p = 0 the structure pushes the fluid with only the fluid's own p/ρ²
 // term, half of what holds it back at rest (docs/sph.md), so the fluid
 // presses into the structure; mode 1 removes that.
@@ -47,8 +54,9 @@ struct StructureSphState {
         {"structure_group", "group index of the structure balls", "1", 0.0, 0.0, 1e9, PLAB_INTEGER,
          "groups are numbered in the order the scene first names them"},
         {"fluid_group", "group index of the SPH fluid", "1", 1.0, 0.0, 1e9, PLAB_INTEGER, "as structure_group"},
-        {"pressure_mode", "structure pressure", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
-         "0 thesis: rho0, p = 0; 1 extrapolated from the fluid with the ball's acceleration"},
+        {"pressure_mode", "structure pressure", "1", 1.0, 0.0, 2.0, PLAB_INTEGER,
+         "0 thesis: rho0, p = 0; 1 extrapolated from the fluid with the ball's acceleration; 2 extrapolated with "
+         "gravity only (for lattices whose balls vibrate: free-standing or breaking structures)"},
         {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
          "as in the sph contact model"},
         {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
@@ -66,7 +74,8 @@ struct StructureSphState {
     static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0}};
 
     explicit StructureSphState(const double* p)
-        : structure_(int(p[structure_group])), fluid_(int(p[fluid_group])), extrapolate_(int(p[pressure_mode]) == 1),
+        : structure_(int(p[structure_group])), fluid_(int(p[fluid_group])), extrapolate_(int(p[pressure_mode]) >= 1),
+          ball_acceleration_(int(p[pressure_mode]) == 1),
           kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), rho0_(p[rest_density]),
           gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
           g_{p[gx], p[gy], p[gz]} {}
@@ -103,14 +112,15 @@ private:
             }
             const double w = W.value(std::sqrt(r2));
             double acc_term = 0;  // (g - a_s)·(x_s - x_f), a_s = F_s/m_s of the last cycle
-            for (int c = 0; c < 3; ++c) acc_term += (g_[c] - v.force[3 * s + c] / v.mass[s]) * d[c];
+            for (int c = 0; c < 3; ++c)
+                acc_term += (g_[c] - (ball_acceleration_ ? v.force[3 * s + c] / v.mass[s] : 0.0)) * d[c];
             weighted_[s] += (p[f] + rho[f] * acc_term) * w;
             weights_[s] += w;
         }
     }
 
     int structure_, fluid_;
-    bool extrapolate_;
+    bool extrapolate_, ball_acceleration_;
     plab::sph::KernelKind kind_;
     double h_, rho0_, gamma_, b_;
     double g_[3];

@@ -90,9 +90,6 @@ json dam_break_scene(const DamBreakSpec& s) {
             {"passes", passes}};
 }
 
-namespace {
-
-// Reference points (T, Z) with T ≤ t_max, every series.
 std::vector<std::pair<double, double>> martin_moyce(double t_max) {
     std::vector<std::pair<double, double>> points;  // columns: series, T, Z, t_orig_s
     for (const auto& c : reference_rows("martin_moyce_1952_surge.csv")) {
@@ -102,8 +99,6 @@ std::vector<std::pair<double, double>> martin_moyce(double t_max) {
     }
     return points;
 }
-
-} // namespace
 
 double front_at(const DamBreakResult& r, double T) {
     const auto it = std::lower_bound(r.T.begin(), r.T.end(), T);

@@ -140,10 +140,21 @@ ElasticGateResult elastic_gate(const ElasticGateSpec& s) {
         r.gate += w.bodies.group[i] == gate;
     }
     const std::clock_t c_start = std::clock();
+    // Fig. 27's water levels: the highest fluid centre in a strip, + dp/2
+    auto level = [&](double x_lo, double x_hi) {
+        double top = 0;
+        for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+            const Vec& x = w.bodies.position[i];
+            if (w.bodies.group[i] == fluid_group && x.x() >= x_lo && x.x() < x_hi) top = std::max(top, x.y());
+        }
+        return top + 0.5 * s.spacing;
+    };
     auto record = [&]() {
         r.t.push_back(w.time);
         r.dx.push_back(w.bodies.position[tip].x() - x0.x());
         r.dy.push_back(w.bodies.position[tip].y() - x0.y());
+        r.level_gate.push_back(level(water_w - 0.01, water_w));
+        r.level_5cm.push_back(level(water_w - 0.055, water_w - 0.045));
     };
     record();
     while (w.time < s.end_time) {
@@ -212,6 +223,13 @@ PLAB_VALIDATION_CASE("elastic_gate",
                   t.fluid, s.spacing, t.gate, s.gate_radius, t.bonds, t.broken, s.end_time, t.steps, t.cpu_seconds,
                   100 * t.rms_x_rel, t.peak_x, t.peak_time, t.peak_x_ref, t.peak_time_ref, peak_dt, 100 * t.rms_y_rel);
     r.details = buf;
+    r.details += "    water level (thesis Fig. 27), m: t / behind the gate / 5 cm from it:";
+    for (double tt = 0.05; tt <= s.end_time + 1e-9; tt += 0.05) {
+        std::snprintf(buf, sizeof buf, " %.2f s %.4f %.4f;", tt, sample_history(t.t, t.level_gate, tt),
+                      sample_history(t.t, t.level_5cm, tt));
+        r.details += buf;
+    }
+    r.details += "\n";
     if (peak_dt > 0.03) {
         r.error = std::max(r.error, r.tolerance + peak_dt);
         r.details += "    peak time off by more than 0.03 s\n";

@@ -1,9 +1,26 @@
-// Validation case `gate_fracture` (thesis §7.4, Fig. 28): the elastic gate's
-// set-up with the gate clamped at the bottom, its top free, no rigid plate,
-// and a lowered strength, so that the water's bending moment breaks it near
-// the clamp (thesis: at about 0.12 s) and the pieces travel with the flow.
+// Validation case `gate_fracture` (thesis §7.4, Figs. 28–29): the elastic
+// gate's set-up with the gate clamped at the bottom, its top free, no rigid
+// plate, and a lowered strength, so that the water's bending moment breaks it
+// near the clamp (thesis: at about 0.12 s) and the pieces travel with the flow.
 // No reference data: the case checks what the thesis reports — the gate
-// breaks, first near the clamp, and nothing passes through the walls.
+// breaks first near the clamp, at about 0.12 s, and nothing passes through
+// the walls.
+//
+// Why it broke at 0.001 s before (docs/coupling.md has the measurements):
+//  * the quick gate (R 1.25 mm) had rows of 2-1-2 balls across its 5 mm: a
+//    chain of triangles joined at single balls, a hinge at the clamp that
+//    only the (ν = 0.33: 1 %) shear springs hold; it sheared within 1 ms.
+//    A gate needs three balls across (R <= 5/6 mm) — refused otherwise;
+//  * structure_sph_state mode 1 puts each ball's F/m — its bond vibration,
+//    ~1e4 m/s² — into the gate's pressure: the free-standing gate's balls fell
+//    below 0.75 ρ0 within 20 ms with unbreakable bonds. Mode 2 leaves it out;
+//  * with both fixed, the clamp's bond stresses grow smoothly as the water
+//    bends the gate, to a peak at 0.11–0.14 s (the same with R 0.625 and
+//    0.83 mm): the break time is the time that load reaches the strength.
+//    The thesis gives no strength; it says it was lowered so that the water
+//    breaks the gate. Here sigma_ult = 1.4e6 Pa puts the calibrated bond shear
+//    strength (eq. 44, 0.0037 sigma_ult at ν 0.33 = 5.2 kPa) just below that
+//    peak: the flow's peak load breaks the gate, its earlier load does not.
 //
 // Walls for broken pieces (thesis §7.4 gives DEM balls a stronger repulsion
 // from the boundary particles than fluid balls get): here the boundary
@@ -18,6 +35,8 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <stdexcept>
+#include <string>
 
 namespace plab::cases {
 
@@ -30,6 +49,10 @@ json gate_fracture_scene(const GateFractureSpec& s) {
     e.spacing = s.spacing;
     e.gate_radius = s.gate_radius;
     e.end_time = s.end_time;
+    e.pressure_mode = s.pressure_mode;
+    if (6 * s.gate_radius > gate_x1 - gate_x0 + 1e-12)
+        throw std::invalid_argument("gate_fracture: gate radius " + std::to_string(s.gate_radius) +
+                                    " m leaves fewer than three balls across the 5 mm gate (a hinge chain); use R <= 5/6 mm");
     json scene = elastic_gate_scene(e);
     const double R = s.gate_radius;
     scene["description"] =
@@ -54,13 +77,9 @@ json gate_fracture_scene(const GateFractureSpec& s) {
     // clamp: the two bottom rows (centres at R and R + √3 R)
     scene["commands"][1]["set"]["region"] = {{"min", {gate_x0, -R}}, {"max", {gate_x1, 2.8 * R}}};
     scene["histories"]["record"].push_back({{"name", "broken"}, {"quantity", "bonds.broken"}});
-    // The water tears round the broken pieces: fluid balls in a piece's wake
-    // fall to 0.90 rho0 by t = 0.11 s (quick run), beyond the 5 % band that
-    // suits a quiet flow (docs/stability.md). That is a weakness of this case
-    // (issue 5: the gate also breaks too early), not an instability of the
-    // run; the band here only keeps the detector for a blow-up.
-    for (json& pass : scene["passes"])
-        if (pass["name"] == "sph_eos") pass["properties"]["density_band"] = 0.25;
+    if (s.density_band > 0)
+        for (json& pass : scene["passes"])
+            if (pass["name"] == "sph_eos") pass["properties"]["density_band"] = s.density_band;
     return scene;
 }
 
@@ -97,6 +116,7 @@ GateFractureResult gate_fracture(const GateFractureSpec& s) {
     if (!w.bond_breaks.empty()) {
         r.first_break_time = w.bond_breaks.front().time;
         r.first_break_y = w.bond_breaks.front().point.y();
+        r.first_break_mode = w.bond_breaks.front().mode;
     }
     r.penetrated = r.min_x < 0 || r.min_y < 0 || r.max_x > tank_l;
     return r;
@@ -109,30 +129,37 @@ namespace {
 using namespace plab;
 using namespace plab::cases;
 
-// Pass: the gate breaks within 0.2 s, first within 0.02 m of the clamp, and
-// no gate ball's centre crosses a wall surface. The error figure is 0 when
-// all hold, else 1. The thesis's break time (~0.12 s) is reported, not
-// required: with sigma_ult 1.5e5 Pa the lattice gates break within 10 ms of
-// the release (R 1.25 mm: 1 ms; R 0.83 mm: 7 ms), the time depends on the
-// strength, and the thesis gives no strength (docs/coupling.md). Full:
-// dp 2.5 mm, R 0.625 mm, 0.3 s; quick: dp 5 mm, R 1.25 mm, 0.2 s.
+// Pass: the first bond breaks within 0.02 m of the clamp at 0.12 ± 0.05 s
+// (thesis: "at time around 0.12 s"), and no gate ball's centre crosses a
+// wall surface. The error figure is |t_break - 0.12 s| in s (tolerance
+// 0.05 s), 1 when nothing broke, not at the clamp, or a piece crossed a wall.
+// Full: dp 2.5 mm, R 0.625 mm (thesis: four balls across), 0.2 s; quick:
+// dp 5 mm, R 0.83 mm (three across), 0.12 s.
 PLAB_VALIDATION_CASE("gate_fracture",
-                     "SPH-DEM fluid-structure with fracture (thesis 7.4): bottom-clamped gate breaks near the clamp, "
-                     "pieces stay inside the walls",
+                     "SPH-DEM fluid-structure with fracture (thesis 7.4): bottom-clamped gate breaks near the clamp at "
+                     "~0.12 s, pieces stay inside the walls",
                      [](bool quick) {
     GateFractureSpec s;
-    if (quick) { s.spacing = 0.005; s.gate_radius = 0.00125; s.end_time = 0.2; }
+    if (quick) { s.spacing = 0.005; s.gate_radius = 0.005 / 6; s.end_time = 0.12; }
+    // full: the break releases the clamp's stored energy and throws water at
+    // 4.3 m/s (2.6 sqrt(2gH), c0 only 3.8 times that): a ball reaches
+    // 1.05 rho0 at 0.1197 s, 0.7 ms after the first break; (v/c0)^2 = 0.07
+    else s.density_band = 0.1;
     const GateFractureResult t = gate_fracture(s);
-    const bool broke = t.broken > 0 && t.first_break_time <= 0.2 && t.first_break_y < 0.02;
-    CaseResult r{broke && !t.penetrated ? 0.0 : 1.0, 0.5,
-                 "0 when the gate breaks near the clamp within 0.2 s and no piece crosses a wall, else 1", ""};
-    char buf[500];
+    const bool at_clamp = t.broken > 0 && t.first_break_y < 0.02;
+    CaseResult r{at_clamp && !t.penetrated ? std::fabs(t.first_break_time - 0.12) : 1.0, 0.05,
+                 "|first break time - 0.12 s| (thesis), s; 1 when it does not break at the clamp or a piece crosses a wall",
+                 ""};
+    char buf[600];
     std::snprintf(buf, sizeof buf,
-                  "    dp %.4g m, gate R %.4g m, strength %.3g Pa, t = %.2f s, %ld steps, %.1f s CPU\n"
-                  "    %ld of %ld bonds broke; first at t = %.3f s (thesis ~0.12 s), y = %.4f m; gate balls x in [%.4f, %.4f] m, "
-                  "lowest y %.4f m (walls at x = 0, %.1f m, floor y = 0)\n",
-                  s.spacing, s.gate_radius, s.strength, s.end_time, t.steps, t.cpu_seconds, t.broken, t.bonds,
-                  t.first_break_time, t.first_break_y, t.min_x, t.max_x, t.min_y, 0.5);
+                  "    dp %.4g m, gate R %.4g m, strength %.3g Pa, pressure_mode %d, density band %.2f, t = %.2f s, %ld steps, "
+                  "%.1f s CPU\n"
+                  "    %ld of %ld bonds broke; first at t = %.3f s (thesis ~0.12 s), y = %.4f m, in %s; gate balls x in "
+                  "[%.4f, %.4f] m, lowest y %.4f m (walls at x = 0, %.1f m, floor y = 0)\n",
+                  s.spacing, s.gate_radius, s.strength, s.pressure_mode, s.density_band > 0 ? s.density_band : 0.05,
+                  s.end_time, t.steps, t.cpu_seconds, t.broken,
+                  t.bonds, t.first_break_time, t.first_break_y, t.first_break_mode == 2 ? "shear" : "tension", t.min_x,
+                  t.max_x, t.min_y, 0.5);
     r.details = buf;
     return r;
 });

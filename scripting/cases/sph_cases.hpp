@@ -5,6 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <utility>
+#include <vector>
+
 namespace plab::cases {
 
 // A block of fixed SPH boundary balls (thesis §2.2.4): radius db/2 at
@@ -85,6 +88,8 @@ struct DamBreakResult {
 
 nlohmann::json dam_break_scene(const DamBreakSpec& s);
 DamBreakResult dam_break(const DamBreakSpec& s);
+// Martin & Moyce (1952) surge points (T, Z) with T <= t_max, every series.
+std::vector<std::pair<double, double>> martin_moyce(double t_max);
 // The front Z = x/a at time T, interpolated in the recorded history.
 double front_at(const DamBreakResult& r, double T);
 

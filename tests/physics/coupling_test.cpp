@@ -230,6 +230,13 @@ TEST_CASE("write the coupled examples", "[.write_examples]") {
     const std::string dir = std::string(PLAB_SOURCE_DIR) + "/examples/coupled/";
     std::ofstream(dir + "sedimentation.json") << cases::sedimentation_scene(cases::SedimentationSpec{}).dump(1) << "\n";
     std::ofstream(dir + "elastic_gate.json") << cases::elastic_gate_scene(cases::ElasticGateSpec{}).dump(1) << "\n";
+    std::ofstream(dir + "gate_fracture.json") << cases::gate_fracture_scene(cases::GateFractureSpec{}).dump(1) << "\n";
+    std::ofstream(dir + "two_phase_dam_break.json")
+        << cases::two_phase_dam_break_scene(cases::TwoPhaseDamBreakSpec{}).dump(1) << "\n";
+    cases::FpsiSpec weak;
+    weak.bond_strength = 2e4;
+    std::ofstream(dir + "fpsi_case_I.json") << cases::fpsi_scene(cases::FpsiSpec{}).dump(1) << "\n";
+    std::ofstream(dir + "fpsi_case_II.json") << cases::fpsi_scene(weak).dump(1) << "\n";
 }
 
 // The sedimentation sweep over d/dp (docs/speed-accuracy.md): the case's
@@ -306,22 +313,24 @@ TEST_CASE("a structure floor in the SPH sums carries the weight of the water abo
 }
 
 // Not part of the test run (hidden tag): gate fracture at chosen settings,
-// PLAB_STUDY="dp:R:end:strength", comma-separated.
+// PLAB_STUDY="dp:R:end:strength[:pressure_mode[:density_band]]", comma-separated.
 TEST_CASE("gate fracture study", "[.gate_fracture_study]") {
     const char* env = std::getenv("PLAB_STUDY");
-    std::stringstream ss(env ? env : "0.005:0.00125:0.2:4e5");
+    std::stringstream ss(env ? env : "0.005:0.000833333:0.15:1.4e6");
     std::string item;
     while (std::getline(ss, item, ',')) {
         cases::GateFractureSpec s;
-        double v[4] = {0.005, 0.00125, 0.2, 4e5};
+        double v[6] = {0.005, 0.000833333, 0.15, 1.4e6, 2, 0};
         std::stringstream is(item);
         std::string tok;
-        for (int k = 0; k < 4 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
-        s.spacing = v[0]; s.gate_radius = v[1]; s.end_time = v[2]; s.strength = v[3];
+        for (int k = 0; k < 6 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
+        s.spacing = v[0]; s.gate_radius = v[1]; s.end_time = v[2]; s.strength = v[3]; s.pressure_mode = int(v[4]);
+        s.density_band = v[5];
         const cases::GateFractureResult r = cases::gate_fracture(s);
-        std::printf("dp %.4f R %.5f strength %.3g: %ld of %ld broken, first at %.3f s y %.4f; x [%.4f, %.4f], min y %.4f, "
+        std::printf("dp %.4f R %.5f strength %.3g: %ld of %ld broken, first at %.3f s y %.4f mode %d; x [%.4f, %.4f], min y %.4f, "
                     "penetrated %d; %ld steps, %.0f s CPU\n",
-                    s.spacing, s.gate_radius, s.strength, r.broken, r.bonds, r.first_break_time, r.first_break_y, r.min_x,
+                    s.spacing, s.gate_radius, s.strength, r.broken, r.bonds, r.first_break_time, r.first_break_y,
+                    r.first_break_mode, r.min_x,
                     r.max_x, r.min_y, int(r.penetrated), r.steps, r.cpu_seconds);
         std::fflush(stdout);
     }
