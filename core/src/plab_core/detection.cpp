@@ -237,11 +237,9 @@ void World::build_entries() {
             entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
         }
     }
-    const std::size_t slots = entries_.size();
-    slot_force_.resize(3 * slots);
-    slot_moment_.resize(3 * slots);
-    slot_kt_.resize(slots);
-    slot_kr_.resize(slots);
+    slot_fm_.assign(kSlotDoubles * entries_.size(), 0.0);
+    slot_live_.resize(sets_.size());
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) slot_live_[si].assign(sets_[si]->size(), 0);
     any_accumulation_ = false;
     for (auto& inst : instances_) any_accumulation_ |= !inst->desc->rates_stage && !inst->fields_accumulated.empty();
 }
