@@ -545,6 +545,10 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
 
     w.nominal_valid_ = false;  // recomputed from the state, as the uninterrupted run did
     w.snapshot_.valid = false;
+    // radii and masses of the ends from the bodies, whatever the file holds
+    // (files written before they were kept for inactive rows lack them)
+    for (auto& inst : w.instances_)
+        for (ContactSet* s : {&inst->balls, &inst->walls}) w.fill_pair_constants(*s);
     w.build_entries();
 }
 

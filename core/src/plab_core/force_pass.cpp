@@ -77,13 +77,7 @@ bool World::geometry_rows(const ModelInstance& inst, ContactSet& s, std::size_t 
         put(s.point, k, point);
         put(s.rel_velocity, k, walls.velocity_at(f.wall, point) - vi);
         put(s.rel_angular_velocity, k, walls.walls[f.wall].angular_velocity - B.angular_velocity[i]);
-        s.radius1[k] = ri;
-        s.radius2[k] = 0;
-        s.mass1[k] = B.mass[i];
-        s.mass2[k] = kInf;
-        s.eff_mass[k] = B.mass[i];  // a wall has infinite mass
-        s.eff_radius[k] = ri;
-        clear_row_outputs(s, k);
+        clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, install_pairs)
         exceeded |= -gap > inst.max_overlap * ri;
     }
     return exceeded;
@@ -106,7 +100,7 @@ bool World::ball_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
         for (std::size_t k = k0; k < k1; ++k) {
             const std::int32_t i = s.end1[k], j = s.end2[k];
             const double dist = (B.position[j] - B.position[i]).norm();
-            const double gap = dist - B.radius[i] - B.radius[j];
+            const double gap = dist - s.radius1[k] - s.radius2[k];
             const bool bonded = persist >= 0 && s.history[k * inst.stride + persist] > 0;
             const bool active = bonded || (by_distance ? dist <= inst.range : gap <= inst.range);
             s.gap[k] = gap;
@@ -119,7 +113,7 @@ bool World::ball_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
             const std::size_t k = rows[a];
             const std::int32_t i = s.end1[k], j = s.end2[k];
             const Vec& xi = B.position[i];
-            const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
+            const double ri = s.radius1[k], rj = s.radius2[k];
             const Vec d = B.position[j] - xi;
             const double dist = s.distance[k], gap = s.gap[k];
             const Vec normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
@@ -130,13 +124,7 @@ bool World::ball_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
             put(s.point, k, point);
             put(s.rel_velocity, k, vj - vi);
             put(s.rel_angular_velocity, k, B.angular_velocity[j] - B.angular_velocity[i]);
-            s.radius1[k] = ri;
-            s.radius2[k] = rj;
-            s.mass1[k] = mi;
-            s.mass2[k] = mj;
-            s.eff_mass[k] = mi * mj / (mi + mj);
-            s.eff_radius[k] = ri * rj / (ri + rj);
-            clear_row_outputs(s, k);
+            clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, install_pairs)
             exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
         }
     }
@@ -407,7 +395,7 @@ void World::sum_stiffness() const {
 
 // Sum contact forces and moments onto bodies (plus gravity, applied loads and
 // local damping), each body adding its own slots in a fixed order.
-void World::reduce() {
+bool World::reduce() {
     const std::size_t n = bodies.size();
     constexpr std::uint32_t end2_bit = 1u << 31;
     for (auto& inst : instances_)
@@ -416,7 +404,8 @@ void World::reduce() {
     if (!swept_)  // force_sweep() scattered the rows already
         for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_slots(si);
     double local_work = 0;
-#pragma omp parallel for schedule(static) reduction(+ : local_work) if (n >= parallel_min)
+    bool non_finite = false;
+#pragma omp parallel for schedule(static) reduction(+ : local_work) reduction(| : non_finite) if (n >= parallel_min)
     for (std::size_t i = 0; i < n; ++i) {
         Vec f = bodies.mass[i] * gravity + bodies.applied_force[i];
         Vec m = bodies.applied_moment[i];
@@ -454,6 +443,8 @@ void World::reduce() {
         if (dim == 2) { f.z() = 0; m.x() = 0; m.y() = 0; }
         bodies.force[i] = f;
         bodies.moment[i] = m;
+        // NaN or Inf anywhere makes the sum non-finite; check_finite() finds which
+        non_finite |= !std::isfinite(f.sum() + m.sum() + bodies.position[i].sum() + bodies.velocity[i].sum());
     }
     energies.local_damping += local_work;
     stiffness_valid_ = false;
@@ -469,6 +460,7 @@ void World::reduce() {
             w.moment += (Vec(&s.point[3 * k]) - w.centre).cross(fc) + Vec(&s.moment2[3 * k]);
         }
     }
+    return non_finite;
 }
 
 // Active contacts after this cycle's detection and geometry, for passes

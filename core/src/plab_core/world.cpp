@@ -305,10 +305,11 @@ void World::force_pass() {
             geometry(inst, s);
             if (s.with_wall) resolve_wall_features(s);
         }
-        build_pass_contacts();
         if (swept_) {
             for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
+            build_pass_contacts();  // the sweeps set the active flags
         } else {
+            build_pass_contacts();
             rates_stage();
             for (auto& inst : instances_) {
                 compute(*inst, inst->balls, PLAB_STAGE_FORCES);
@@ -318,8 +319,7 @@ void World::force_pass() {
     }
     {
         PhaseTimer t{phase_seconds[ph_reduction]};
-        reduce();
-        check_finite();
+        if (reduce()) check_finite();
     }
     {
         PhaseTimer t{phase_seconds[ph_post_force]};

@@ -271,6 +271,7 @@ private:
     void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs);
     void build_entries();
+    void fill_pair_constants(ContactSet& set) const;
     bool displacement_exceeds_skin() const;
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
@@ -287,7 +288,7 @@ private:
     void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
                            std::vector<std::array<std::int32_t, 2>>& pairs) const;
     void force_pass();
-    void reduce();
+    bool reduce();  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
     void kick(double half_dt);
     void drift(double dt);
