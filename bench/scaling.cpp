@@ -1,5 +1,5 @@
 // plab_bench_scaling: cost per particle-step of contact detection and of the
-// whole cycle for ~1e3, 1e4 and 1e5 settled balls (3D, or 2D with --dim 2).
+// whole cycle for ~1e3 to 1e6 settled balls (3D, or 2D with --dim 2).
 //
 // The packing is a cubic (3D) / square (2D) lattice of touching balls in a
 // box of walls, under gravity. It is placed in static equilibrium: each layer
@@ -13,8 +13,12 @@
 // list, candidate pairs, history transfer), because a settled packing does
 // not rebuild on its own.
 //
-// Acceptance (the issue): ns per particle-step differs by less than 1.5x
-// between N = 1e3 and 1e5, i.e. detection and the cycle are O(N).
+// Acceptance (issue 8): ns per particle-step differs by less than 1.3x
+// between N = 1e3 and 1e6, i.e. detection and the cycle are O(N). The CPU
+// time of the process is reported beside the wall time (on a shared machine
+// it is the steadier figure with one thread), and the peak resident memory
+// after each size (getrusage maxrss: the process's peak so far, so run one
+// size per process to read bytes per particle).
 #include "simulation.hpp"
 
 #include <plab_core/world.hpp>
@@ -29,6 +33,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -42,10 +48,10 @@ const char* usage =
     "  --dim 3        3D spheres in a cubic lattice (default); 2: discs in a square lattice\n"
     "  --quick        N up to 1e4 and a smaller budget (CI, a few seconds)\n"
     "  --threads N    OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
-    "  --sizes ...    target ball counts (default 1000,10000,100000; quick 1000,10000)\n"
+    "  --sizes ...    target ball counts (default 1000,10000,100000,1000000; quick 1000,10000)\n"
     "  --budget P     timed particle-steps per size (default 2e7; quick 2e6): steps = max(20, P/N),\n"
     "                 capped so that one size's timed phase takes about 5 s (a busy machine)\n"
-    "exit status: 1 when the full run (largest/smallest N >= 50) misses the < 1.5x acceptance, else 0\n";
+    "exit status: 1 when the full run (largest/smallest N >= 50) misses the < 1.3x acceptance, else 0\n";
 
 struct Options {
     int dim = 3;
@@ -58,11 +64,13 @@ struct Options {
 
 struct Row {
     long n = 0, steps = 0, settle_steps = 0;
-    double setup_s = 0, wall_s = 0, contacts = 0, max_speed = 0;
+    double setup_s = 0, wall_s = 0, cpu_s = 0, contacts = 0, max_speed = 0;
+    double peak_rss_mb = 0;  // process peak after this size
     std::uint64_t rebuilds = 0;
     double rebuild_ns_per_particle = 0;
     std::array<double, ph_count> phases{};
     double ns_per_ps() const { return 1e9 * wall_s / (double(n) * double(steps)); }
+    double cpu_ns_per_ps() const { return 1e9 * cpu_s / (double(n) * double(steps)); }
 };
 
 [[noreturn]] void die(const std::string& msg) {
@@ -108,7 +116,7 @@ Options parse(int argc, char** argv) {
             die("unknown option " + a);
         }
     }
-    if (o.sizes.empty()) o.sizes = o.quick ? std::vector<long>{1000, 10000} : std::vector<long>{1000, 10000, 100000};
+    if (o.sizes.empty()) o.sizes = o.quick ? std::vector<long>{1000, 10000} : std::vector<long>{1000, 10000, 100000, 1000000};
     if (o.budget == 0) o.budget = o.quick ? 2e6 : 2e7;
     return o;
 }
@@ -180,12 +188,26 @@ void settle(World& w, const Options& o, Row& row) {
     row.steps = std::clamp(long(o.max_seconds * double(row.settle_steps) / seconds), 20L, wanted);
 }
 
+double cpu_seconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+double peak_rss_mb() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) / 1024.0;  // Linux: kB
+}
+
 void time_cycle(World& w, Row& row) {
     w.phase_seconds = {};
     const std::uint64_t rebuilds0 = w.rebuilds;
+    const double cpu0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     for (long k = 0; k < row.steps; ++k) w.step();
     row.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    row.cpu_s = cpu_seconds() - cpu0;
     row.phases = w.phase_seconds;
     row.rebuilds = w.rebuilds - rebuilds0;
     row.contacts = double(w.active_contacts());
@@ -218,17 +240,20 @@ Row measure(const Options& o, long target) {
     row.setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     time_cycle(w, row);
     time_rebuilds(w, row);
+    row.peak_rss_mb = peak_rss_mb();
     return row;
 }
 
 void print_tables(const std::vector<Row>& rows) {
-    std::printf("%8s %6s %8s %12s %9s %7s %7s %9s %8s %11s %10s\n", "N", "steps", "wall_s", "p-steps/s", "ns/p-step",
-                "detect%", "force%", "contacts", "rebuilds", "rebuild_ns", "max_v_m/s");
+    std::printf("%8s %6s %8s %12s %9s %9s %7s %7s %9s %8s %11s %10s %9s %8s\n", "N", "steps", "wall_s", "p-steps/s",
+                "ns/p-step", "cpu_ns/ps", "detect%", "force%", "contacts", "rebuilds", "rebuild_ns", "max_v_m/s",
+                "peak_MB", "B/ball");
     for (const Row& r : rows) {
         const double det = 100 * r.phases[ph_detection] / r.wall_s, force = 100 * r.phases[ph_force] / r.wall_s;
-        std::printf("%8ld %6ld %8.3f %12.4g %9.1f %6.1f%% %6.1f%% %9.0f %8llu %11.1f %10.2e\n", r.n, r.steps, r.wall_s,
-                    double(r.n) * double(r.steps) / r.wall_s, r.ns_per_ps(), det, force, r.contacts,
-                    (unsigned long long)r.rebuilds, r.rebuild_ns_per_particle, r.max_speed);
+        std::printf("%8ld %6ld %8.3f %12.4g %9.1f %9.1f %6.1f%% %6.1f%% %9.0f %8llu %11.1f %10.2e %9.1f %8.0f\n", r.n,
+                    r.steps, r.wall_s, double(r.n) * double(r.steps) / r.wall_s, r.ns_per_ps(), r.cpu_ns_per_ps(), det,
+                    force, r.contacts, (unsigned long long)r.rebuilds, r.rebuild_ns_per_particle, r.max_speed,
+                    r.peak_rss_mb, r.peak_rss_mb * 1048576.0 / double(r.n));
     }
     auto width = [](int p) { return int(std::max<std::size_t>(8, std::strlen(phase_names[p]))); };
     std::printf("\nns per particle-step by phase:\n%8s", "N");
@@ -242,26 +267,28 @@ void print_tables(const std::vector<Row>& rows) {
     }
 }
 
-// Returns the exit status: 1 when a run spanning >= 50x in N misses < 1.5x.
+// Returns the exit status: 1 when a run spanning >= 50x in N misses < 1.3x.
 int print_verdict(const std::vector<Row>& rows) {
-    double lo = 1e300, hi = 0, rlo = 1e300, rhi = 0;
+    double lo = 1e300, hi = 0, rlo = 1e300, rhi = 0, clo = 1e300, chi = 0;
     long n_lo = rows.front().n, n_hi = rows.front().n;
     for (const Row& r : rows) {
         n_lo = std::min(n_lo, r.n);
         n_hi = std::max(n_hi, r.n);
         lo = std::min(lo, r.ns_per_ps());
         hi = std::max(hi, r.ns_per_ps());
+        clo = std::min(clo, r.cpu_ns_per_ps());
+        chi = std::max(chi, r.cpu_ns_per_ps());
         rlo = std::min(rlo, r.rebuild_ns_per_particle);
         rhi = std::max(rhi, r.rebuild_ns_per_particle);
     }
     const double ratio = hi / lo;
-    // the acceptance is stated for N from 1e3 to 1e5; over a narrower span
+    // the acceptance is stated for N from 1e3 to 1e6; over a narrow span
     // (--quick: 1e3..1e4) the ratio is reported but not judged
     const bool judged = double(n_hi) >= 50.0 * double(n_lo);
-    std::printf("\nmax/min ns per particle-step: %.2f (acceptance < 1.5 between 1e3 and 1e5: %s)\n", ratio,
-                judged ? (ratio < 1.5 ? "PASS" : "FAIL") : "not judged, N spans less than 50x");
+    std::printf("\nmax/min ns per particle-step: %.2f wall, %.2f CPU (acceptance < 1.3 from 1e3 to 1e6, on wall time: %s)\n",
+                ratio, chi / clo, judged ? (ratio < 1.3 ? "PASS" : "FAIL") : "not judged, N spans less than 50x");
     std::printf("max/min forced-rebuild ns per particle: %.2f\n", rhi / rlo);
-    return judged && ratio >= 1.5 ? 1 : 0;
+    return judged && ratio >= 1.3 ? 1 : 0;
 }
 
 } // namespace

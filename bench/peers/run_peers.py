@@ -10,7 +10,12 @@ loop throughput (particle-steps per second), the ratio plab/peer, and a
 physics check: pair contacts and kinetic energy at the end of each code (SPH:
 the fluid's mean height instead of contacts, and both must agree within 3 %).
 plab's throughput is from its run summary (the solve loop); the peers' from
-their "Loop time" line. Threads: plab OpenMP threads, peers MPI ranks.
+their "Loop time" line. Threads: plab OpenMP threads, peers MPI ranks. Each
+run's peak resident memory (wait4 maxrss) and the load average are printed,
+because the machine may be shared. Idle threads and ranks yield the CPU
+instead of spinning (plab: OMP_WAIT_POLICY=PASSIVE unless set; Open MPI:
+mpi_yield_when_idle 1): on a shared machine spinning made 2-thread plab 11x
+slower (45.8 s against 4.1 s wall for 2000 settled gran3d steps).
 """
 import argparse
 import json
@@ -28,6 +33,18 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 SPH_SCENE = "sph_double_dam_break"
 
 
+def run_measured(cmd, env, capture):
+    """Runs cmd; returns (stdout text or None, peak resident memory in MB)."""
+    p = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE if capture else subprocess.DEVNULL,
+                         stderr=subprocess.DEVNULL, text=True)
+    text = p.stdout.read() if capture else None
+    _, status, usage = os.wait4(p.pid, 0)
+    code = os.waitstatus_to_exitcode(status)
+    if code != 0:
+        raise subprocess.CalledProcessError(code, cmd)
+    return text, usage.ru_maxrss / 1024.0  # Linux: kB
+
+
 def run_plab(plab, scene, threads, steps, work):
     out = os.path.join(work, "plab_out")
     sph = scene == "sph"
@@ -39,14 +56,15 @@ def run_plab(plab, scene, threads, steps, work):
     path = os.path.join(work, scene + "_run.json")
     json.dump(sc, open(path, "w"))
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
-    subprocess.run([plab, "run", path, "--out", out], check=True, env=env,
-                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    env.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+    _, rss = run_measured([plab, "run", path, "--out", out], env, False)
     s = json.load(open(os.path.join(out, "summary.json")))
     if sph:
         rows = open(os.path.join(out, "history.csv")).read().split()
-        return s["particle_steps_per_second"], float(rows[-1].split(",")[-1]), s["energies"]["kinetic"], s["state_hash"]
+        return (s["particle_steps_per_second"], float(rows[-1].split(",")[-1]), s["energies"]["kinetic"],
+                s["state_hash"], rss)
     pairs = sum(m["active_contacts"] for m in s["models"][:1])  # first rule: grains-grains
-    return s["particle_steps_per_second"], pairs, s["energies"]["kinetic"], s["state_hash"]
+    return s["particle_steps_per_second"], pairs, s["energies"]["kinetic"], s["state_hash"], rss
 
 
 def run_peer(exe, infile, dim, data, threads, steps):
@@ -54,13 +72,14 @@ def run_peer(exe, infile, dim, data, threads, steps):
     if data:
         cmd += ["-var", "dim", str(dim), "-var", "data", data]
     if threads > 1:
-        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(threads)] + cmd
+        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "mpi_yield_when_idle", "1",
+               "-np", str(threads)] + cmd
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    text = subprocess.run(cmd, check=True, env=env, capture_output=True, text=True).stdout
+    text, rss = run_measured(cmd, env, True)
     loop = float(re.search(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", text).group(1))
     m = re.search(r"PEER_RESULT contacts ([0-9.eE+-]+) kinetic ([0-9.eE+-]+)", text)
     atoms = int(re.search(r"for \d+ steps with (\d+) atoms", text).group(1))
-    return atoms * steps / loop, float(m.group(1)), float(m.group(2)), None
+    return atoms * steps / loop, float(m.group(1)), float(m.group(2)), None, rss
 
 
 def main():
@@ -78,6 +97,7 @@ def main():
     threads = [int(t) for t in a.threads.split(",")]
     codes = a.codes.split(",")
     results = {}
+    print(f"load average at start: {' '.join(f'{x:.2f}' for x in os.getloadavg())}", flush=True)
     for rep in range(a.reps):
         for scene in a.scenes.split(","):
             dim = 3 if scene.endswith("3d") else 2
@@ -98,14 +118,15 @@ def main():
                     results.setdefault((scene, t, code), []).append(r)
                     second = f"fluid mean height {r[1]:.5g} m" if scene == "sph" else f"{r[1]:.0f} pair contacts"
                     print(f"  rep {rep + 1} {scene} {code} x{t}: {r[0] / 1e6:.2f} M particle-steps/s, "
-                          f"{second}, kinetic {r[2]:.4g} J" + (f", hash {r[3]}" if r[3] else ""),
-                          flush=True)
+                          f"{second}, kinetic {r[2]:.4g} J, peak {r[4]:.0f} MB" + (f", hash {r[3]}" if r[3] else "")
+                          + f", load {os.getloadavg()[0]:.2f}", flush=True)
+    print(f"load average at end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     print(f"\nmedian of {a.reps} interleaved runs, {a.steps} steps (sph: {a.sph_steps}), "
           "loop throughput in M particle-steps/s")
     print("| scene | threads | " + " | ".join(codes) + " | " +
           " | ".join(f"plab/{c}" for c in codes if c != "plab") +
-          " | pair contacts (sph: fluid mean height, m) | kinetic energy, J |")
-    print("|---" * (3 + 2 * len(codes) - 1 + 1) + "|")
+          " | pair contacts (sph: fluid mean height, m) | kinetic energy, J | peak memory, MB |")
+    print("|---" * (3 + 2 * len(codes) - 1 + 2) + "|")
     for scene in a.scenes.split(","):
         for t in threads:
             have = [c for c in codes if (scene, t, c) in results]
@@ -116,7 +137,8 @@ def main():
             fmt = "{:.4g}" if scene == "sph" else "{:.0f}"
             print(f"| {scene} | {t} | " + " | ".join(f"{med[c] / 1e6:.2f}" if c in med else "-" for c in codes) +
                   " | " + " | ".join(ratios) + " | " + " / ".join(fmt.format(last[c][1]) for c in have) + " | " +
-                  " / ".join(f"{last[c][2]:.4g}" for c in have) + " |")
+                  " / ".join(f"{last[c][2]:.4g}" for c in have) + " | " +
+                  " / ".join(f"{max(x[4] for x in results[(scene, t, c)]):.0f}" for c in have) + " |")
             if scene == "sph" and "plab" in last and "liggghts" in last:
                 dh = last["plab"][1] / last["liggghts"][1] - 1
                 dk = last["plab"][2] / last["liggghts"][2] - 1

@@ -33,17 +33,21 @@ struct Params {
     double kn, ks, fric, beta_n, beta_s;
     int dp_mode;
     double rgap;
+    // derived once, not per contact: dashpot coefficients per sqrt(kg)
+    // (2 beta sqrt(m k) = c sqrt(m), eqs. 27-28) and inverse stiffnesses
+    double cn = 2.0 * beta_n * std::sqrt(kn), cs = 2.0 * beta_s * std::sqrt(ks);
+    double inv_kn = 1.0 / kn, inv_ks = ks > 0.0 ? 1.0 / ks : 0.0;
 };
 
 // Keeps a stored vector (shear force, bending moment) in the current contact
 // plane: project out the normal component and restore the magnitude (PFC's
 // rotation of the shear force with the contact plane).
 inline Vec3 rotate_into_plane(const Vec3& v, const Vec3& n) {
-    const double mag = norm(v);
-    if (mag == 0.0) return v;
+    const double mag2 = dot(v, v);
+    if (mag2 == 0.0) return v;
     const Vec3 t = v - dot(v, n) * n;
-    const double tmag = norm(t);
-    return tmag > 0.0 ? t * (mag / tmag) : Vec3{};
+    const double tmag2 = dot(t, t);
+    return tmag2 > 0.0 ? t * std::sqrt(mag2 / tmag2) : Vec3{};
 }
 
 // Applies the law to contact c with its shear force stored in history slots
@@ -66,24 +70,25 @@ inline Vec3 apply(const Params& p, const Contact& c, int shear_slot, double& str
     const Vec3 fs_old = rotate_into_plane(c.history_vec(shear_slot), n);
     Vec3 fs = fs_old - p.ks * dt * vs;  // eqs. 23–25
     const double fs_max = p.fric * fn_lin;  // eq. 26
-    const double fs_mag = norm(fs);
+    const double fs_mag2 = dot(fs, fs);  // compared squared: most contacts stick, and need no sqrt
     bool sliding = false;
-    if (fs_mag > fs_max) {
-        const Vec3 capped = fs_mag > 0.0 ? fs * (fs_max / fs_mag) : Vec3{};
+    if (fs_mag2 > fs_max * fs_max) {
+        const double fs_mag = std::sqrt(fs_mag2);
+        const Vec3 capped = fs * (fs_max / fs_mag);
         // energy dissipated by the slip displacement (fs - capped)/ks at mean force
-        if (p.ks > 0.0) c.add_slip_energy(std::fabs(dot(0.5 * (capped + fs_old), (fs - capped) / p.ks)));
+        if (p.ks > 0.0) c.add_slip_energy(std::fabs(dot(0.5 * (capped + fs_old), (fs - capped) * p.inv_ks)));
         fs = capped;
         sliding = true;
     }
     c.set_history_vec(shear_slot, fs);
 
-    const double m = c.eff_mass();
-    double fn_d = -2.0 * p.beta_n * std::sqrt(m * p.kn) * vn;  // eq. 27, on end 2
+    const double sqrt_m = std::sqrt(c.eff_mass());
+    double fn_d = -p.cn * sqrt_m * vn;  // eq. 27, on end 2
     const bool shear_dashpot = !((p.dp_mode == 1 || p.dp_mode == 3) && sliding);
-    const Vec3 fs_d = shear_dashpot ? -2.0 * p.beta_s * std::sqrt(m * p.ks) * vs : Vec3{};  // eq. 28
+    const Vec3 fs_d = shear_dashpot ? -p.cs * sqrt_m * vs : Vec3{};  // eq. 28
     if ((p.dp_mode == 2 || p.dp_mode == 3) && fn_lin + fn_d < 0.0) fn_d = -fn_lin;  // no tension in total
 
-    strain += 0.5 * fn_lin * fn_lin / p.kn + (p.ks > 0.0 ? 0.5 * dot(fs, fs) / p.ks : 0.0);
+    strain += 0.5 * fn_lin * fn_lin * p.inv_kn + 0.5 * dot(fs, fs) * p.inv_ks;
     c.add_dashpot_energy(-(fn_d * vn + dot(fs_d, vs)) * dt);
     return (fn_lin + fn_d) * n + fs + fs_d;
 }

@@ -125,7 +125,8 @@ typedef struct plab_contact_batch {
     /* in/out: history rows, history_stride doubles per contact */
     double* history;
 
-    /* outputs, one entry per contact (the host zeroes them first) */
+    /* outputs, one entry per contact; the host zeroes them first in the rows
+     * that are active, and ignores whatever an inactive row holds */
     double* force;        /* 3*count, on end 2, N */
     double* moment1;      /* 3*count, pure moment on end 1 (beyond r x F), N m */
     double* moment2;      /* 3*count, pure moment on end 2, N m */

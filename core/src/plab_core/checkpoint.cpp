@@ -311,6 +311,7 @@ void WorldCheckpoint::save_detection(const World& w, CheckpointWriter& out) {
     out.u8(w.prepared_);
     out.vecs(w.position_at_build_);
     out.f64(w.wall_motion_since_build_);
+    w.sum_stiffness();
     out.column(w.k_trans_);
     out.column(w.k_rot_);
     out.column(w.pc_end1_);
@@ -452,6 +453,7 @@ void WorldCheckpoint::load_detection(World& w, CheckpointReader& in) {
     w.wall_motion_since_build_ = in.f64();
     w.k_trans_ = in.column<double>();
     w.k_rot_ = in.column<double>();
+    w.stiffness_valid_ = true;  // the sums of the pass that made the saved forces
     w.pc_end1_ = in.column<std::int32_t>();
     w.pc_end2_ = in.column<std::int32_t>();
     w.pc_wall_ = in.column<std::uint8_t>();
@@ -543,6 +545,10 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
 
     w.nominal_valid_ = false;  // recomputed from the state, as the uninterrupted run did
     w.snapshot_.valid = false;
+    // radii and masses of the ends from the bodies, whatever the file holds
+    // (files written before they were kept for inactive rows lack them)
+    for (auto& inst : w.instances_)
+        for (ContactSet* s : {&inst->balls, &inst->walls}) w.fill_pair_constants(*s);
     w.build_entries();
 }
 

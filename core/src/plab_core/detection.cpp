@@ -182,6 +182,24 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     set.key2 = std::move(nk2);
     set.history = std::move(history);
     set.resize_columns(n_unique, int(inst.fields_accumulated.size()));
+    fill_pair_constants(set);
+}
+
+// Radii and masses of the two ends are constant while a candidate list lives
+// (a change of bodies marks the world dirty), so these batch columns are
+// filled when the list is made or loaded, not in every step's geometry.
+void World::fill_pair_constants(ContactSet& set) const {
+    for (std::size_t r = 0; r < set.size(); ++r) {
+        const std::int32_t i = set.end1[r], j = set.end2[r];
+        const double ri = bodies.radius[i], mi = bodies.mass[i];
+        const double rj = set.with_wall ? 0.0 : bodies.radius[j], mj = set.with_wall ? kInf : bodies.mass[j];
+        set.radius1[r] = ri;
+        set.radius2[r] = rj;
+        set.mass1[r] = mi;
+        set.mass2[r] = mj;
+        set.eff_mass[r] = set.with_wall ? mi : mi * mj / (mi + mj);  // a wall has infinite mass
+        set.eff_radius[r] = set.with_wall ? ri : ri * rj / (ri + rj);
+    }
 }
 
 void World::rebuild() {
@@ -237,11 +255,9 @@ void World::build_entries() {
             entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
         }
     }
-    const std::size_t slots = entries_.size();
-    slot_force_.resize(3 * slots);
-    slot_moment_.resize(3 * slots);
-    slot_kt_.resize(slots);
-    slot_kr_.resize(slots);
+    slot_fm_.assign(kSlotDoubles * entries_.size(), 0.0);
+    slot_live_.resize(sets_.size());
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) slot_live_[si].assign(sets_[si]->size(), 0);
     any_accumulation_ = false;
     for (auto& inst : instances_) any_accumulation_ |= !inst->desc->rates_stage && !inst->fields_accumulated.empty();
 }

@@ -12,7 +12,6 @@
 namespace plab {
 
 namespace {
-constexpr std::size_t kBatch = 512;
 
 inline void put(std::vector<double>& col, std::size_t k, const Vec& v) {
     col[3 * k] = v.x(); col[3 * k + 1] = v.y(); col[3 * k + 2] = v.z();
@@ -21,78 +20,115 @@ inline void put(std::vector<double>& col, std::size_t k, const Vec& v) {
 
 void World::geometry(ModelInstance& inst, ContactSet& s) {
     const std::size_t n = s.size();
-    const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
-    const int persist = inst.desc->persist_slot;
-    const auto& B = bodies;
-    const double overlap_limit = inst.max_overlap;  // the stability detector's, checked here while the gap is at hand
+    const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
     bool exceeded = false;
 #pragma omp parallel for schedule(static) reduction(| : exceeded) if (n >= parallel_min)
-    for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t b = 0; b < n_batches; ++b)
+        exceeded |= geometry_rows(inst, s, b * kContactBatch, std::min(n, (b + 1) * kContactBatch));
+    s.overlap_exceeded = exceeded;
+}
+
+// Zeroes the outputs of row k that a model adds to (dt limit: no limit).
+// Only active rows are handed to a model, so only they are zeroed: the
+// outputs of an inactive row are stale and nothing reads them.
+inline void clear_row_outputs(ContactSet& s, std::size_t k) {
+    for (auto* v : {&s.force, &s.moment1, &s.moment2}) std::fill_n(v->data() + 3 * k, 3, 0.0);
+    s.strain[k] = s.slip[k] = s.dashpot[k] = s.k_t[k] = s.k_r[k] = s.break_energy[k] = 0;
+    s.dt_limit[k] = kInf;
+    for (auto& a : s.acc1) a[k] = 0;
+    for (auto& a : s.acc2) a[k] = 0;
+}
+
+// Geometry of rows [begin, end); true when an active contact overlaps beyond
+// its model's max_overlap (the stability detector's check, done here while
+// the gap is at hand).
+bool World::geometry_rows(const ModelInstance& inst, ContactSet& s, std::size_t begin, std::size_t end) {
+    if (!s.with_wall) return ball_geometry_rows(inst, s, begin, end);
+    const auto& B = bodies;
+    bool exceeded = false;
+    for (std::size_t k = begin; k < end; ++k) {
         const std::int32_t i = s.end1[k];
         const Vec& xi = B.position[i];
         const double ri = B.radius[i];
-        Vec normal, point, v_other, w_other;
-        double dist, rj, mj;
-        if (s.with_wall) {
-            const Facet& f = walls.facets[s.end2[k]];
-            if (f.kind == FacetKind::plane) {
-                dist = (xi - f.a).dot(f.b);  // signed: a ball behind the plane is pushed back
-                normal = -f.b;
-                s.interior[k] = 1;
-            } else {
-                const ClosestPoint cp = closest_point(f, xi);
-                const Vec d = cp.point - xi;
-                dist = d.norm();
-                normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
-                s.interior[k] = cp.interior;
-            }
-            rj = 0;
-            mj = kInf;
-            point = xi + normal * (ri + 0.5 * (dist - ri));
-            v_other = walls.velocity_at(f.wall, point);
-            w_other = walls.walls[f.wall].angular_velocity;
+        const Facet& f = walls.facets[s.end2[k]];
+        Vec normal;
+        double dist;
+        if (f.kind == FacetKind::plane) {
+            dist = (xi - f.a).dot(f.b);  // signed: a ball behind the plane is pushed back
+            normal = -f.b;
+            s.interior[k] = 1;
         } else {
-            const std::int32_t j = s.end2[k];
-            const Vec d = B.position[j] - xi;
+            const ClosestPoint cp = closest_point(f, xi);
+            const Vec d = cp.point - xi;
             dist = d.norm();
-            rj = B.radius[j];
-            // most candidates of a Verlet list are not in contact: their gap
-            // and distance are all a model may read (the other columns of an
-            // inactive row are stale), so skip the rest
-            const double gap_only = dist - ri - rj;
-            const bool bonded = persist >= 0 && s.history[k * inst.stride + persist] > 0;
-            if (!bonded && (by_distance ? dist > inst.range : gap_only > inst.range)) {
-                s.gap[k] = gap_only;
-                s.distance[k] = dist;
-                s.active[k] = 0;
-                continue;
-            }
             normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
-            mj = B.mass[j];
-            point = xi + normal * (ri + 0.5 * gap_only);  // middle of the overlap
-            v_other = B.velocity[j] + B.angular_velocity[j].cross(point - B.position[j]);
-            w_other = B.angular_velocity[j];
+            s.interior[k] = cp.interior;
         }
-        const double gap = dist - ri - rj;
+        const Vec point = xi + normal * (ri + 0.5 * (dist - ri));
+        const double gap = dist - ri;
+        s.gap[k] = gap;
+        s.distance[k] = dist;
+        s.active[k] = inst.desc->range_kind == PLAB_RANGE_DISTANCE ? dist <= inst.range : gap <= inst.range;
+        if (inst.desc->persist_slot >= 0 && s.history[k * inst.stride + inst.desc->persist_slot] > 0)
+            s.active[k] = 1;  // a bond holds at any gap
+        if (!s.active[k]) continue;
         const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
         put(s.normal, k, normal);
         put(s.point, k, point);
-        put(s.rel_velocity, k, v_other - vi);
-        put(s.rel_angular_velocity, k, w_other - B.angular_velocity[i]);
-        s.gap[k] = gap;
-        s.distance[k] = dist;
-        s.radius1[k] = ri;
-        s.radius2[k] = rj;
-        s.mass1[k] = B.mass[i];
-        s.mass2[k] = mj;
-        s.eff_mass[k] = std::isinf(mj) ? B.mass[i] : B.mass[i] * mj / (B.mass[i] + mj);
-        s.eff_radius[k] = rj > 0 ? ri * rj / (ri + rj) : ri;
-        s.active[k] = by_distance ? dist <= inst.range : gap <= inst.range;
-        if (inst.desc->persist_slot >= 0 && s.history[k * inst.stride + inst.desc->persist_slot] > 0)
-            s.active[k] = 1;  // a bond holds at any gap
-        exceeded |= s.active[k] && -gap > overlap_limit * (rj > 0 ? std::min(ri, rj) : ri);
+        put(s.rel_velocity, k, walls.velocity_at(f.wall, point) - vi);
+        put(s.rel_angular_velocity, k, walls.walls[f.wall].angular_velocity - B.angular_velocity[i]);
+        clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, install_pairs)
+        exceeded |= -gap > inst.max_overlap * ri;
     }
-    s.overlap_exceeded = exceeded;
+    return exceeded;
+}
+
+// Ball–ball rows in two passes: the range test over every candidate (most
+// are not in contact; their gap and distance are all a model may read),
+// listing the active rows without a branch per row, then the full geometry
+// of the listed rows only. The in-range flags of a Verlet list follow no
+// pattern, so a branch per row would be mispredicted about half the time.
+bool World::ball_geometry_rows(const ModelInstance& inst, ContactSet& s, std::size_t begin, std::size_t end) {
+    const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
+    const int persist = inst.desc->persist_slot;
+    const auto& B = bodies;
+    std::uint32_t rows[kContactBatch];
+    bool exceeded = false;
+    for (std::size_t k0 = begin; k0 < end; k0 += kContactBatch) {
+        const std::size_t k1 = std::min(end, k0 + kContactBatch);
+        std::size_t n_active = 0;
+        for (std::size_t k = k0; k < k1; ++k) {
+            const std::int32_t i = s.end1[k], j = s.end2[k];
+            const double dist = (B.position[j] - B.position[i]).norm();
+            const double gap = dist - s.radius1[k] - s.radius2[k];
+            const bool bonded = persist >= 0 && s.history[k * inst.stride + persist] > 0;
+            const bool active = bonded || (by_distance ? dist <= inst.range : gap <= inst.range);
+            s.gap[k] = gap;
+            s.distance[k] = dist;
+            s.active[k] = active;
+            rows[n_active] = std::uint32_t(k);
+            n_active += active;
+        }
+        for (std::size_t a = 0; a < n_active; ++a) {
+            const std::size_t k = rows[a];
+            const std::int32_t i = s.end1[k], j = s.end2[k];
+            const Vec& xi = B.position[i];
+            const double ri = s.radius1[k], rj = s.radius2[k];
+            const Vec d = B.position[j] - xi;
+            const double dist = s.distance[k], gap = s.gap[k];
+            const Vec normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
+            const Vec point = xi + normal * (ri + 0.5 * gap);  // middle of the overlap
+            const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(point - B.position[j]);
+            const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
+            put(s.normal, k, normal);
+            put(s.point, k, point);
+            put(s.rel_velocity, k, vj - vi);
+            put(s.rel_angular_velocity, k, B.angular_velocity[j] - B.angular_velocity[i]);
+            clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, install_pairs)
+            exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
+        }
+    }
+    return exceeded;
 }
 
 // A ball touching a wall along several facets. An edge/vertex contact is
@@ -136,62 +172,107 @@ void clear_outputs(ContactSet& s, std::size_t o, std::size_t m) {
 }
 } // namespace
 
+// Calls the model once on rows [o, o + m) of a set; returns its status.
+// `clear`: zero the outputs of every row first (the rates stage writes some
+// that the force stage must not see); otherwise geometry_rows() zeroed those
+// of the active rows, which are the only ones a model writes.
+int World::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::size_t m, std::uint32_t stage,
+                      const double* const* read_cols, bool clear) {
+    if (clear) clear_outputs(s, o, m);  // here rather than up front: the rows stay in cache for the model
+    // pointers into the accumulation columns, on the stack: no allocation in the cycle
+    constexpr std::size_t kMaxAccumulated = 16;
+    double* a1[kMaxAccumulated];
+    double* a2[kMaxAccumulated];
+    if (s.acc1.size() > kMaxAccumulated) return 3;
+    for (std::size_t f = 0; f < s.acc1.size(); ++f) {
+        a1[f] = s.acc1[f].data() + o;
+        a2[f] = s.acc2[f].data() + o;
+    }
+    plab_contact_batch batch{};
+    batch.dim = uint32_t(dim);
+    batch.count = uint32_t(m);
+    batch.end2_is_wall = s.with_wall;
+    batch.history_stride = uint32_t(inst.stride);
+    batch.dt = last_dt;
+    batch.end1 = s.end1.data() + o;
+    batch.end2 = s.end2.data() + o;
+    batch.active = s.active.data() + o;
+    batch.normal = s.normal.data() + 3 * o;
+    batch.gap = s.gap.data() + o;
+    batch.distance = s.distance.data() + o;
+    batch.rel_velocity = s.rel_velocity.data() + 3 * o;
+    batch.rel_angular_velocity = s.rel_angular_velocity.data() + 3 * o;
+    batch.radius1 = s.radius1.data() + o;
+    batch.radius2 = s.radius2.data() + o;
+    batch.mass1 = s.mass1.data() + o;
+    batch.mass2 = s.mass2.data() + o;
+    batch.eff_mass = s.eff_mass.data() + o;
+    batch.eff_radius = s.eff_radius.data() + o;
+    batch.body_fields = read_cols;
+    batch.history = s.history.data() + o * inst.stride;
+    batch.force = s.force.data() + 3 * o;
+    batch.moment1 = s.moment1.data() + 3 * o;
+    batch.moment2 = s.moment2.data() + 3 * o;
+    batch.strain_energy = s.strain.data() + o;
+    batch.slip_energy = s.slip.data() + o;
+    batch.dashpot_energy = s.dashpot.data() + o;
+    batch.stiffness_translational = s.k_t.data() + o;
+    batch.stiffness_rotational = s.k_r.data() + o;
+    batch.dt_limit = s.dt_limit.data() + o;
+    batch.accumulate1 = a1;
+    batch.accumulate2 = a2;
+    batch.break_energy = s.break_energy.data() + o;
+    batch.stage = stage;
+    return inst.desc->compute(inst.state, inst.props.data(), &batch);
+}
+
 void World::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
     const std::size_t n = s.size();
     if (n == 0) return;
     std::vector<const double*> read_cols;
     for (int f : inst.fields_read) read_cols.push_back(fields_[f].data());
-    const std::size_t n_batches = (n + kBatch - 1) / kBatch;
+    const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
     int failed = 0;
 #pragma omp parallel for schedule(dynamic) reduction(| : failed) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
-        const std::size_t o = b * kBatch, m = std::min(kBatch, n - o);
-        clear_outputs(s, o, m);  // here rather than up front: the rows stay in cache for the model
-        std::vector<double*> a1, a2;
-        for (std::size_t f = 0; f < s.acc1.size(); ++f) {
-            a1.push_back(s.acc1[f].data() + o);
-            a2.push_back(s.acc2[f].data() + o);
-        }
-        plab_contact_batch batch{};
-        batch.dim = uint32_t(dim);
-        batch.count = uint32_t(m);
-        batch.end2_is_wall = s.with_wall;
-        batch.history_stride = uint32_t(inst.stride);
-        batch.dt = last_dt;
-        batch.end1 = s.end1.data() + o;
-        batch.end2 = s.end2.data() + o;
-        batch.active = s.active.data() + o;
-        batch.normal = s.normal.data() + 3 * o;
-        batch.gap = s.gap.data() + o;
-        batch.distance = s.distance.data() + o;
-        batch.rel_velocity = s.rel_velocity.data() + 3 * o;
-        batch.rel_angular_velocity = s.rel_angular_velocity.data() + 3 * o;
-        batch.radius1 = s.radius1.data() + o;
-        batch.radius2 = s.radius2.data() + o;
-        batch.mass1 = s.mass1.data() + o;
-        batch.mass2 = s.mass2.data() + o;
-        batch.eff_mass = s.eff_mass.data() + o;
-        batch.eff_radius = s.eff_radius.data() + o;
-        batch.body_fields = read_cols.data();
-        batch.history = s.history.data() + o * inst.stride;
-        batch.force = s.force.data() + 3 * o;
-        batch.moment1 = s.moment1.data() + 3 * o;
-        batch.moment2 = s.moment2.data() + 3 * o;
-        batch.strain_energy = s.strain.data() + o;
-        batch.slip_energy = s.slip.data() + o;
-        batch.dashpot_energy = s.dashpot.data() + o;
-        batch.stiffness_translational = s.k_t.data() + o;
-        batch.stiffness_rotational = s.k_r.data() + o;
-        batch.dt_limit = s.dt_limit.data() + o;
-        batch.accumulate1 = a1.data();
-        batch.accumulate2 = a2.data();
-        batch.break_energy = s.break_energy.data() + o;
-        batch.stage = stage;
-        if (inst.desc->compute(inst.state, inst.props.data(), &batch) != 0) failed = 1;
+        const std::size_t o = b * kContactBatch, m = std::min(kContactBatch, n - o);
+        if (call_model(inst, s, o, m, stage, read_cols.data(), true) != 0) failed = 1;
     }
-    if (failed)
-        throw RunError("contact model '" + inst.model + "' reported a failure in compute() at step " +
-                       std::to_string(step_count));
+    if (failed) model_failed(inst);
+    if (inst.desc->persist_slot >= 0) record_breaks(inst, s);
+}
+
+void World::model_failed(const ModelInstance& inst) const {
+    throw RunError("contact model '" + inst.model + "' reported a failure in compute() at step " +
+                   std::to_string(step_count));
+}
+
+// The force pass of one set in a single sweep over batches of rows (models
+// without a rates stage): geometry (ball–ball sets; a wall set has it done
+// before, because resolve_wall_features needs a ball's rows together), the
+// model, and the scatter to the bodies' slots, while the batch's rows are in
+// cache. Batches are fixed row ranges, so every sum is thread-count free.
+void World::force_sweep(std::uint32_t si, bool with_geometry) {
+    ContactSet& s = *sets_[si];
+    ModelInstance& inst = *instances_[si / 2];
+    const std::size_t n = s.size();
+    s.batch_energy.assign(kBatchEnergies * ((n + kContactBatch - 1) / kContactBatch), 0.0);
+    if (n == 0) return;
+    const double* read_cols[16];
+    if (inst.fields_read.size() > 16) throw PluginError("contact model '" + inst.model + "' reads more than 16 body fields");
+    for (std::size_t f = 0; f < inst.fields_read.size(); ++f) read_cols[f] = fields_[inst.fields_read[f]].data();
+    const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
+    int failed = 0;
+    bool exceeded = false;
+#pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_batches; ++b) {
+        const std::size_t o = b * kContactBatch, m = std::min(kContactBatch, n - o);
+        if (with_geometry) exceeded |= geometry_rows(inst, s, o, o + m);
+        if (call_model(inst, s, o, m, PLAB_STAGE_FORCES, read_cols, false) != 0) failed = 1;
+        scatter_rows(si, o, o + m);
+    }
+    if (with_geometry) s.overlap_exceeded = exceeded;
+    if (failed) model_failed(inst);
     if (inst.desc->persist_slot >= 0) record_breaks(inst, s);
 }
 
@@ -222,69 +303,115 @@ void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uin
         fields_[owner.fields_accumulated[a]][i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
 }
 
-// What each contact row adds to its two bodies, written to the bodies' CSR
-// slots: walking the rows in order keeps the contact data in cache, and the
-// body loop below then reads its slots contiguously. An inactive row adds
-// zeros, which leaves every sum bit-identical to skipping it.
-void World::scatter_to_slots(std::uint32_t si) {
-    const ContactSet& s = *sets_[si];
-    const std::size_t n = s.size();
+// What each contact row adds to its two bodies (force and moment), written
+// to the bodies' CSR slots: walking the rows in order keeps the contact data
+// in cache, and the body loop in reduce() then reads its slots contiguously.
+// An inactive row adds zeros, which leaves every sum bit-identical to
+// skipping it; its slots are zeroed once, when it stops being active. The
+// batch's energy sums are taken here too (sum_energies() adds the batches
+// in order, so the totals do not depend on the thread count).
+void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end) {
+    ContactSet& s = *sets_[si];
     const auto& B = bodies;
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
-    for (std::size_t k = 0; k < n; ++k) {
-        const std::uint32_t e1 = slot1_[si][k];
-        if (!s.active[k]) {
-            std::fill_n(&slot_force_[3 * e1], 3, 0.0);
-            std::fill_n(&slot_moment_[3 * e1], 3, 0.0);
-            slot_kt_[e1] = slot_kr_[e1] = 0;
-            if (!s.with_wall) {
-                const std::uint32_t e2 = slot2_[si][k];
-                std::fill_n(&slot_force_[3 * e2], 3, 0.0);
-                std::fill_n(&slot_moment_[3 * e2], 3, 0.0);
-                slot_kt_[e2] = slot_kr_[e2] = 0;
-            }
+    std::uint8_t* live = slot_live_[si].data();
+    const std::uint32_t* slot1 = slot1_[si].data();
+    const std::uint32_t* slot2 = slot2_[si].data();
+    double* fm = slot_fm_.data();
+    double strain = 0, slip = 0, dashpot = 0, broken = 0, wall_power = 0;
+    // first the rows that just stopped being active (rare: a predictable
+    // branch), listing the active ones without a branch per row
+    std::uint32_t rows[kContactBatch];
+    std::size_t n_active = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+        const bool active = s.active[k] != 0;
+        if (!active && live[k]) {
+            std::fill_n(fm + kSlotDoubles * slot1[k], kSlotDoubles, 0.0);
+            if (!s.with_wall) std::fill_n(fm + kSlotDoubles * slot2[k], kSlotDoubles, 0.0);
+        }
+        live[k] = active;
+        rows[n_active] = std::uint32_t(k);
+        n_active += active;
+    }
+    for (std::size_t a = 0; a < n_active; ++a) {
+        const std::size_t k = rows[a];
+        double* f1m1 = fm + kSlotDoubles * slot1[k];
+        strain += s.strain[k];
+        slip += s.slip[k];
+        dashpot += s.dashpot[k];
+        broken += s.break_energy[k];
+        const Vec f2(&s.force[3 * k]), point(&s.point[3 * k]);
+        const Vec m1 = (point - B.position[s.end1[k]]).cross(-f2) + Vec(&s.moment1[3 * k]);
+        for (int c = 0; c < 3; ++c) { f1m1[c] = -f2[c]; f1m1[3 + c] = m1[c]; }
+        if (s.with_wall) {
+            // power of the ball on the wall: -(force on the wall) . v_wall(point)
+            wall_power -= f2.dot(walls.velocity_at(walls.facets[s.end2[k]].wall, point));
             continue;
         }
-        const Vec f2(&s.force[3 * k]), point(&s.point[3 * k]);
-        const double kt = s.k_t[k], kr = s.k_r[k];
-        const Vec arm1 = point - B.position[s.end1[k]];
-        const Vec f1 = -f2;
-        const Vec m1 = arm1.cross(f1) + Vec(&s.moment1[3 * k]);
-        std::copy_n(f1.data(), 3, &slot_force_[3 * e1]);
-        std::copy_n(m1.data(), 3, &slot_moment_[3 * e1]);
-        slot_kt_[e1] = kt;
-        slot_kr_[e1] = kr + kt * arm1.squaredNorm();
-        if (s.with_wall) continue;
-        const std::uint32_t e2 = slot2_[si][k];
-        const Vec arm2 = point - B.position[s.end2[k]];
-        const Vec m2 = arm2.cross(f2) + Vec(&s.moment2[3 * k]);
-        std::copy_n(f2.data(), 3, &slot_force_[3 * e2]);
-        std::copy_n(m2.data(), 3, &slot_moment_[3 * e2]);
-        slot_kt_[e2] = kt;
-        slot_kr_[e2] = kr + kt * arm2.squaredNorm();
+        double* f2m2 = fm + kSlotDoubles * slot2[k];
+        const Vec m2 = (point - B.position[s.end2[k]]).cross(f2) + Vec(&s.moment2[3 * k]);
+        for (int c = 0; c < 3; ++c) { f2m2[c] = f2[c]; f2m2[3 + c] = m2[c]; }
     }
+    double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
+    e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = wall_power;
+}
+
+void World::scatter_to_slots(std::uint32_t si) {
+    const std::size_t n = sets_[si]->size();
+    const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
+    sets_[si]->batch_energy.assign(kBatchEnergies * n_batches, 0.0);
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_batches; ++b)
+        scatter_rows(si, b * kContactBatch, std::min(n, (b + 1) * kContactBatch));
+}
+
+// Per-body stiffness sums for the stable timestep (PFC: sqrt(m / sum k_t),
+// sqrt(I / sum k_r) with the arm term k_t |r_c|^2), from the contacts of the
+// last force pass. Only the automatic timestep, snapshots and reports need
+// them, so they are summed on demand, each body in its fixed entry order.
+void World::sum_stiffness() const {
+    if (stiffness_valid_) return;
+    constexpr std::uint32_t end2_bit = 1u << 31;
+    const std::size_t n = bodies.size();
+    k_trans_.assign(n, 0.0);
+    k_rot_.assign(n, 0.0);
+    if (entry_start_.size() == n + 1) {
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+        for (std::size_t i = 0; i < n; ++i) {
+            double kt = 0, kr = 0;
+            for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
+                const ContactSet& s = *sets_[entries_[e].set];
+                const std::uint32_t k = entries_[e].row & ~end2_bit;
+                if (!s.active[k]) continue;
+                const Vec arm = Vec(&s.point[3 * k]) - bodies.position[i];
+                kt += s.k_t[k];
+                kr += s.k_r[k] + s.k_t[k] * arm.squaredNorm();
+            }
+            k_trans_[i] = kt;
+            k_rot_[i] = kr;
+        }
+    }
+    stiffness_valid_ = true;
 }
 
 // Sum contact forces and moments onto bodies (plus gravity, applied loads and
 // local damping), each body adding its own slots in a fixed order.
-void World::reduce() {
+bool World::reduce() {
     const std::size_t n = bodies.size();
     constexpr std::uint32_t end2_bit = 1u << 31;
     for (auto& inst : instances_)
         if (!inst->desc->rates_stage)
             for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
-    for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_slots(si);
+    if (!swept_)  // force_sweep() scattered the rows already
+        for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_slots(si);
     double local_work = 0;
-#pragma omp parallel for schedule(static) reduction(+ : local_work) if (n >= parallel_min)
+    bool non_finite = false;
+#pragma omp parallel for schedule(static) reduction(+ : local_work) reduction(| : non_finite) if (n >= parallel_min)
     for (std::size_t i = 0; i < n; ++i) {
         Vec f = bodies.mass[i] * gravity + bodies.applied_force[i];
         Vec m = bodies.applied_moment[i];
-        double kt = 0, kr = 0;
         for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-            f += Vec(&slot_force_[3 * e]);
-            m += Vec(&slot_moment_[3 * e]);
-            kt += slot_kt_[e];
-            kr += slot_kr_[e];
+            f += Vec(&slot_fm_[kSlotDoubles * e]);
+            m += Vec(&slot_fm_[kSlotDoubles * e + 3]);
         }
         if (any_accumulation_)  // fields of rates-stage models are summed after that stage
             for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
@@ -316,10 +443,11 @@ void World::reduce() {
         if (dim == 2) { f.z() = 0; m.x() = 0; m.y() = 0; }
         bodies.force[i] = f;
         bodies.moment[i] = m;
-        k_trans_[i] = kt;
-        k_rot_[i] = kr;
+        // NaN or Inf anywhere makes the sum non-finite; check_finite() finds which
+        non_finite |= !std::isfinite(f.sum() + m.sum() + bodies.position[i].sum() + bodies.velocity[i].sum());
     }
     energies.local_damping += local_work;
+    stiffness_valid_ = false;
 
     for (Wall& w : walls.walls) { w.force.setZero(); w.moment.setZero(); }
     for (auto& inst : instances_) {
@@ -332,6 +460,7 @@ void World::reduce() {
             w.moment += (Vec(&s.point[3 * k]) - w.centre).cross(fc) + Vec(&s.moment2[3 * k]);
         }
     }
+    return non_finite;
 }
 
 // Active contacts after this cycle's detection and geometry, for passes
@@ -381,6 +510,7 @@ void World::rates_stage() {
 // it, so a diagnostic can say "2.1x the stable limit of model linear for
 // group grains". Strings are built once, for the winner only.
 StableStep World::stable_timestep() {
+    sum_stiffness();
     if (!nominal_valid_) { nominal_cache_ = nominal_timestep(); nominal_valid_ = true; }
     StableStep best = nominal_cache_;
     std::size_t ball = bodies.size();

@@ -293,22 +293,33 @@ void World::force_pass() {
     }
     {
         PhaseTimer t{phase_seconds[ph_force]};
-        for (auto& inst : instances_) {
-            geometry(*inst, inst->balls);
-            geometry(*inst, inst->walls);
-            resolve_wall_features(inst->walls);
+        // without a rates stage, each set is done in one sweep over batches
+        // (geometry, model, scatter to slots); a rates stage needs all the
+        // geometry before any force
+        swept_ = true;
+        for (auto& inst : instances_) swept_ &= !inst->desc->rates_stage;
+        for (std::uint32_t si = 0; si < sets_.size(); ++si) {
+            ModelInstance& inst = *instances_[si / 2];
+            ContactSet& s = *sets_[si];
+            if (!s.with_wall && swept_) continue;  // geometry in the sweep
+            geometry(inst, s);
+            if (s.with_wall) resolve_wall_features(s);
         }
-        build_pass_contacts();
-        rates_stage();
-        for (auto& inst : instances_) {
-            compute(*inst, inst->balls, PLAB_STAGE_FORCES);
-            compute(*inst, inst->walls, PLAB_STAGE_FORCES);
+        if (swept_) {
+            for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
+            build_pass_contacts();  // the sweeps set the active flags
+        } else {
+            build_pass_contacts();
+            rates_stage();
+            for (auto& inst : instances_) {
+                compute(*inst, inst->balls, PLAB_STAGE_FORCES);
+                compute(*inst, inst->walls, PLAB_STAGE_FORCES);
+            }
         }
     }
     {
         PhaseTimer t{phase_seconds[ph_reduction]};
-        reduce();
-        check_finite();
+        if (reduce()) check_finite();
     }
     {
         PhaseTimer t{phase_seconds[ph_post_force]};
@@ -411,23 +422,17 @@ void World::sum_energies(double dt) {
                 if (fix & (dof_rx << c)) boundary -= bodies.moment[i][c] * w[c] * dt;
             }
     }
+    // contact energies, summed per batch of rows by scatter_rows()
     double strain = 0;
-    for (auto& inst : instances_)
-        for (ContactSet* s : {&inst->balls, &inst->walls}) {
-            for (std::size_t k = 0; k < s->size(); ++k) {
-                if (!s->active[k]) continue;  // (a bond broken this step was active when it broke)
-                strain += s->strain[k];
-                if (dt == 0) continue;  // a re-evaluation, not a step: no dissipation
-                energies.slip += s->slip[k];
-                energies.dashpot += s->dashpot[k];
-                energies.bond_break += s->break_energy[k];
-                if (s->with_wall) {
-                    // work of the wall on the ball: -force (on wall) · v_wall(point) dt
-                    const Vec f(&s->force[3 * k]);
-                    const Vec p(&s->point[3 * k]);
-                    boundary -= f.dot(walls.velocity_at(walls.facets[s->end2[k]].wall, p)) * dt;
-                }
-            }
+    for (const ContactSet* s : sets_)
+        for (std::size_t b = 0; b < s->batch_energy.size(); b += kBatchEnergies) {
+            const double* e = &s->batch_energy[b];
+            strain += e[0];
+            if (dt == 0) continue;  // a re-evaluation, not a step: no dissipation
+            energies.slip += e[1];
+            energies.dashpot += e[2];
+            energies.bond_break += e[3];
+            boundary += e[4] * dt;  // work of the walls on the balls
         }
     energies.kinetic = kinetic;
     energies.strain = strain;

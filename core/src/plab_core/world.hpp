@@ -33,11 +33,19 @@ struct ContactSet {
     // outputs
     std::vector<double> force, moment1, moment2, strain, slip, dashpot, k_t, k_r, dt_limit, break_energy;
     std::vector<std::vector<double>> acc1, acc2;
+    // per batch of kContactBatch rows: strain, slip, dashpot, bond-break
+    // energy and wall power of the active rows (World::scatter_rows)
+    std::vector<double> batch_energy;
     bool overlap_exceeded = false;  // an active contact overlaps beyond its model's max_overlap (geometry())
 
     std::size_t size() const { return end1.size(); }
     void resize_columns(std::size_t n, int n_accumulated);
 };
+
+// Rows per call of a model (one C ABI call per batch). Batches are fixed row
+// ranges, never per thread, so sums taken per batch are thread-count free.
+constexpr std::size_t kContactBatch = 512;
+constexpr std::size_t kBatchEnergies = 5;  // ContactSet::batch_energy per batch
 
 struct ModelInstance {
     std::string model;
@@ -197,12 +205,21 @@ private:
     std::vector<ContactSet*> sets_;
     std::vector<const ModelInstance*> set_owner_;
     // CSR slot of each row's end 1 / end 2 in entries_ (per set), and what
-    // each slot adds to its body this cycle: force, moment, k_t, k_r
+    // each slot adds to its body this cycle: force and moment (kSlotDoubles
+    // per slot, one cache line); slot_live_: the row's slots are non-zero
+    static constexpr std::size_t kSlotDoubles = 6;
     std::vector<std::vector<std::uint32_t>> slot1_, slot2_;
-    std::vector<double> slot_force_, slot_moment_, slot_kt_, slot_kr_;
+    std::vector<double> slot_fm_;
+    std::vector<std::vector<std::uint8_t>> slot_live_;
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
+    bool swept_ = false;             // the last force pass ran force_sweep()
+    void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end);
     void scatter_to_slots(std::uint32_t set_index);
-    std::vector<double> k_trans_, k_rot_;  // per-body stiffness sums of the last pass
+    void force_sweep(std::uint32_t set_index, bool with_geometry);
+    // per-body stiffness sums of the last force pass, summed on demand
+    mutable std::vector<double> k_trans_, k_rot_;
+    mutable bool stiffness_valid_ = false;
+    void sum_stiffness() const;
     // active contacts for passes (built only when a pass is loaded)
     std::vector<std::int32_t> pc_end1_, pc_end2_;
     std::vector<std::uint8_t> pc_wall_;
@@ -254,8 +271,14 @@ private:
     void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs);
     void build_entries();
+    void fill_pair_constants(ContactSet& set) const;
     bool displacement_exceeds_skin() const;
     void geometry(ModelInstance& inst, ContactSet& set);
+    bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
+    bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
+    int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
+                   const double* const* read_cols, bool clear);
+    [[noreturn]] void model_failed(const ModelInstance& inst) const;
     void resolve_wall_features(ContactSet& set);
     void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
     void rates_stage();
@@ -265,7 +288,7 @@ private:
     void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
                            std::vector<std::array<std::int32_t, 2>>& pairs) const;
     void force_pass();
-    void reduce();
+    bool reduce();  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
     void kick(double half_dt);
     void drift(double dt);
