@@ -31,9 +31,9 @@ struct Linear {
 
     enum Slot : int { shear_force_x, shear_force_y, shear_force_z, slot_count };
     static constexpr plab_history_desc history[] = {
-        {"shear_force_x", 0.0, PLAB_SWAP_NEGATE, "linear shear force on end 2, global x, N"},
-        {"shear_force_y", 0.0, PLAB_SWAP_NEGATE, "linear shear force on end 2, global y, N"},
-        {"shear_force_z", 0.0, PLAB_SWAP_NEGATE, "linear shear force on end 2, global z, N"},
+        plab::linear_law::shear_force_x,
+        plab::linear_law::shear_force_y,
+        plab::linear_law::shear_force_z,
     };
 
     static double activity_range(const double* p) { return p[rgap]; }

@@ -29,6 +29,14 @@ inline constexpr plab_property_desc rgap = {"rgap", "reference gap", "m", 0.0, -
                                             PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
                                             "the linear part is active while surface gap <= rgap"};
 
+// History slots of the linear law's shear spring (three, in this order).
+inline constexpr plab_history_desc shear_force_x = {"shear_force_x", 0.0, PLAB_SWAP_NEGATE,
+                                                    "linear shear force on end 2, global x, N"};
+inline constexpr plab_history_desc shear_force_y = {"shear_force_y", 0.0, PLAB_SWAP_NEGATE,
+                                                    "linear shear force on end 2, global y, N"};
+inline constexpr plab_history_desc shear_force_z = {"shear_force_z", 0.0, PLAB_SWAP_NEGATE,
+                                                    "linear shear force on end 2, global z, N"};
+
 struct Params {
     double kn, ks, fric, beta_n, beta_s;
     int dp_mode;

@@ -54,9 +54,9 @@ struct LinearLubrication {
 
     enum Slot : int { shear_force_x, shear_force_y, shear_force_z, slot_count };
     static constexpr plab_history_desc history[] = {
-        {"shear_force_x", 0.0, PLAB_SWAP_NEGATE, "linear shear force on end 2, global x, N"},
-        {"shear_force_y", 0.0, PLAB_SWAP_NEGATE, "linear shear force on end 2, global y, N"},
-        {"shear_force_z", 0.0, PLAB_SWAP_NEGATE, "linear shear force on end 2, global z, N"},
+        plab::linear_law::shear_force_x,
+        plab::linear_law::shear_force_y,
+        plab::linear_law::shear_force_z,
     };
 
     static double activity_range(const double* p) { return std::max(p[rgap], p[mu] > 0 ? p[lub_range] : p[rgap]); }

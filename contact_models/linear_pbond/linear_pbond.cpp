@@ -52,9 +52,9 @@ struct LinearPBond {
         slot_count
     };
     static constexpr plab_history_desc history[] = {
-        {"shear_force_x", 0.0, PLAB_SWAP_NEGATE, "linear shear force on end 2, x, N"},
-        {"shear_force_y", 0.0, PLAB_SWAP_NEGATE, "linear shear force on end 2, y, N"},
-        {"shear_force_z", 0.0, PLAB_SWAP_NEGATE, "linear shear force on end 2, z, N"},
+        plab::linear_law::shear_force_x,
+        plab::linear_law::shear_force_y,
+        plab::linear_law::shear_force_z,
         {"bond_state", 0.0, PLAB_SWAP_KEEP, "1 bonded, 0 unbonded or broken"},
         {"bond_normal_force", 0.0, PLAB_SWAP_KEEP, "bond normal force, tension positive, N"},
         {"bond_shear_force_x", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, x, N"},
