@@ -16,6 +16,8 @@ cd build-asan
 # halt on the first report; plug-ins stay loaded until exit, so leak reports
 # name real leaks
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1:strict_string_checks=1"
+# fontconfig's process-wide caches are not ours (scripts/lsan.supp)
+export LSAN_OPTIONS="suppressions=$PWD/../scripts/lsan.supp"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export OMP_NUM_THREADS=1
 # the unit tests; the coarse validation cases (validate_all_quick) and the
