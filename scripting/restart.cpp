@@ -105,7 +105,10 @@ std::string Simulation::last_good_path() const { return (fs::path(out_dir_) / "l
 void Simulation::keep_last_good() {
     const World& w = *world_;
     if (out_dir_.empty() || w.snapshot_interval == 0) return;
-    if (last_good_.empty() || w.step_count % w.snapshot_interval == 0) last_good_ = checkpoint_bytes();
+    if (last_good_.empty() || w.step_count % w.snapshot_interval == 0) {
+        std::string().swap(last_good_);  // free the old copy first: only one is held at a time
+        last_good_ = checkpoint_bytes();
+    }
 }
 
 std::string Simulation::write_last_good() const {
@@ -157,7 +160,7 @@ std::string Simulation::checkpoint_bytes() const {
     out.f64(checkpoint_every_);
     out.f64(next_checkpoint_time_);
     out.section("end");
-    return out.bytes();
+    return out.take();
 }
 
 std::unique_ptr<Simulation> Simulation::restart(const std::string& path, const std::vector<std::string>& sets,

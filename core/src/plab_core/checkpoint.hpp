@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace plab {
@@ -51,6 +52,7 @@ public:
         for (const Vec& x : v) vec(x);
     }
     const std::string& bytes() const { return data_; }
+    std::string take() { return std::move(data_); }  // the bytes, without a copy; the writer is spent
 
 private:
     void raw(const void* p, std::size_t n) { data_.append(static_cast<const char*>(p), n); }
