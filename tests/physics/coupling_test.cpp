@@ -17,6 +17,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include "study_points.hpp"
 
 using namespace plab;
 using namespace plab::coupling;
@@ -173,16 +174,10 @@ TEST_CASE("quick sedimentation settles at the reference terminal velocity within
 // Not part of the test run (hidden tag): the resolution and drag-law study
 // of docs/coupling.md, `build/tests/plab_tests "[.sedimentation_study]"`.
 TEST_CASE("sedimentation study: terminal velocity against d/dp and the 2D drag reading", "[.sedimentation_study]") {
-    const char* env = std::getenv("PLAB_STUDY");  // e.g. "0.0025:0:0.45,0.00125:1:0.8" = dp:drag_2d:end[:h/dp[:buoyancy[:h_coupling]]]
-    std::string spec = env ? env : "0.0025:0:0.8,0.002:0:0.8,0.00125:0:0.8,0.001:0:0.8";
-    std::stringstream ss(spec);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
+    // e.g. PLAB_STUDY="0.0025:0:0.45,0.00125:1:0.8" = dp:drag_2d:end[:h/dp[:buoyancy[:h_coupling]]]
+    for (const auto& v : study_points("0.0025:0:0.8,0.002:0:0.8,0.00125:0:0.8,0.001:0:0.8",
+                                      {0.0025, 0, 0.8, 2.0, 0, 0.006})) {  // h_c 0: the fluid's kernel
         cases::SedimentationSpec s;
-        double v[6] = {0.0025, 0, 0.8, 2.0, 0, 0.006};  // h_c 0: the fluid's kernel
-        std::stringstream is(item);
-        std::string tok;
-        for (int k = 0; k < 6 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
         s.spacing = v[0]; s.drag_2d = int(v[1]); s.end_time = v[2]; s.h_over_dp = v[3]; s.buoyancy = int(v[4]);
         s.coupling_length = v[5];
         const cases::SedimentationResult r = cases::sedimentation(s);
@@ -202,15 +197,8 @@ TEST_CASE("sedimentation study: terminal velocity against d/dp and the 2D drag r
 // Not part of the test run (hidden tag): the elastic gate at chosen
 // resolutions, PLAB_STUDY="dp:R:end[:pressure_mode]", comma-separated.
 TEST_CASE("elastic gate study: free-end displacement against Antoci 2007", "[.elastic_gate_study]") {
-    const char* env = std::getenv("PLAB_STUDY");
-    std::stringstream ss(env ? env : "0.0025:0.000625:0.4");
-    std::string item;
-    while (std::getline(ss, item, ',')) {
+    for (const auto& v : study_points("0.0025:0.000625:0.4", {0.0025, 0.000625, 0.4, 1})) {
         cases::ElasticGateSpec s;
-        double v[4] = {0.0025, 0.000625, 0.4, 1};
-        std::stringstream is(item);
-        std::string tok;
-        for (int k = 0; k < 4 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
         s.spacing = v[0]; s.gate_radius = v[1]; s.end_time = v[2]; s.pressure_mode = int(v[3]);
         const cases::ElasticGateResult r = cases::elastic_gate(s);
         std::printf("dp %.5f R %.5f mode %d: %d fluid, %d gate balls; x RMS %.1f %% of peak, peak %.4f m at %.3f s "
@@ -315,15 +303,8 @@ TEST_CASE("a structure floor in the SPH sums carries the weight of the water abo
 // Not part of the test run (hidden tag): gate fracture at chosen settings,
 // PLAB_STUDY="dp:R:end:strength[:pressure_mode[:density_band]]", comma-separated.
 TEST_CASE("gate fracture study", "[.gate_fracture_study]") {
-    const char* env = std::getenv("PLAB_STUDY");
-    std::stringstream ss(env ? env : "0.005:0.000833333:0.15:1.4e6");
-    std::string item;
-    while (std::getline(ss, item, ',')) {
+    for (const auto& v : study_points("0.005:0.000833333:0.15:1.4e6", {0.005, 0.000833333, 0.15, 1.4e6, 2, 0})) {
         cases::GateFractureSpec s;
-        double v[6] = {0.005, 0.000833333, 0.15, 1.4e6, 2, 0};
-        std::stringstream is(item);
-        std::string tok;
-        for (int k = 0; k < 6 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
         s.spacing = v[0]; s.gate_radius = v[1]; s.end_time = v[2]; s.strength = v[3]; s.pressure_mode = int(v[4]);
         s.density_band = v[5];
         const cases::GateFractureResult r = cases::gate_fracture(s);

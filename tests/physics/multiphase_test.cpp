@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <sstream>
 #include <string>
+#include "study_points.hpp"
 
 using namespace plab;
 
@@ -74,15 +75,8 @@ TEST_CASE("lubrication stops beyond one diameter's gap, stays finite at contact,
 // settings, PLAB_STUDY="dp:lubrication_mu:end[:coupling_length]", comma-separated;
 // PLAB_STUDY_HISTORY=1 prints the fronts.
 TEST_CASE("two-phase dam break study", "[.two_phase_study]") {
-    const char* env = std::getenv("PLAB_STUDY");
-    std::stringstream ss(env ? env : "0.0025:8.9e-4:0.2");
-    std::string item;
-    while (std::getline(ss, item, ',')) {
+    for (const auto& v : study_points("0.0025:8.9e-4:0.2", {0.0025, 8.9e-4, 0.2, 0.006})) {
         cases::TwoPhaseDamBreakSpec s;
-        double v[4] = {0.0025, 8.9e-4, 0.2, 0.006};
-        std::stringstream is(item);
-        std::string tok;
-        for (int k = 0; k < 4 && std::getline(is, tok, ':'); ++k) v[k] = std::stod(tok);
         s.spacing = v[0]; s.lubrication_mu = v[1]; s.end_time = v[2]; s.coupling_length = v[3];
         const cases::TwoPhaseDamBreakResult r = cases::two_phase_dam_break(s);
         std::printf("dp %.4f lubrication mu %.3g h_c %.4f: front error vs Martin & Moyce %.1f %%, t* end %.2f, z* end %.2f, "
