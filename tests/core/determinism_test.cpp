@@ -52,16 +52,7 @@ TEST_CASE("a brittle plate breaking under impact gives bit-identical states and 
         omp_set_num_threads(threads);
         REQUIRE(omp_get_max_threads() == threads);
 #endif
-        json scene = {{"dimension", 2},
-                      {"plugins", {"linear", "linear_pbond"}},
-                      {"bodies", {{{"type", "lattice"}, {"group", "plate"}, {"packing", "hexagonal"},
-                                   {"box", {{"min", {0, 0}}, {"max", {0.04, 0.008}}}}, {"radius", 0.001}, {"density", 2400}},
-                                  {{"type", "ball"}, {"group", "projectile"}, {"position", {0.02, 0.0115}},
-                                   {"velocity", {0, -30}}, {"radius", 0.002}, {"density", 7800}}}},
-                      {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"}, {"properties", {{"kn", 5e8}}}},
-                                          {{"groups", {"plate", "plate"}}, {"model", "linear_pbond"},
-                                           {"calibrate", {{"method", "hexagonal_2d"}, {"E", 30e9}, {"nu", 0.2},
-                                                          {"sigma_ult", 5e6}, {"radius", 0.001}}}}}}};
+        json scene = breaking_plate_scene();
         Simulation sim(scene);
         sim.set_quiet(true);
         World& w = sim.world();

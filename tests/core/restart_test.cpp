@@ -51,19 +51,6 @@ fs::path scratch(const std::string& name) {
 
 json pile(int dim = 2) { return settling_scene(dim, dim == 2 ? 150 : 250); }
 
-// A 2D brittle plate hit by a steel ball; the bonds are made before the run.
-json plate_scene() {
-    return {{"dimension", 2},
-            {"plugins", {"linear", "linear_pbond"}},
-            {"bodies", {{{"type", "lattice"}, {"group", "plate"}, {"packing", "hexagonal"},
-                         {"box", {{"min", {0, 0}}, {"max", {0.04, 0.008}}}}, {"radius", 0.001}, {"density", 2400}},
-                        {{"type", "ball"}, {"group", "projectile"}, {"position", {0.02, 0.0115}},
-                         {"velocity", {0, -30}}, {"radius", 0.002}, {"density", 7800}}}},
-            {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"}, {"properties", {{"kn", 5e8}}}},
-                                {{"groups", {"plate", "plate"}}, {"model", "linear_pbond"},
-                                 {"calibrate", {{"method", "hexagonal_2d"}, {"E", 30e9}, {"nu", 0.2},
-                                                {"sigma_ult", 5e6}, {"radius", 0.001}}}}}}};
-}
 
 // with_options: also XSPH (a pre-drift pass, the drift velocity
 // correction) and the normalised summation density filter
@@ -147,8 +134,8 @@ TEST_CASE("a plate whose bonds break restarts bit-identically, break log include
     for (int threads : {1, 2}) {
         INFO(threads << " threads");
         use_threads(threads);
-        const Outcome whole = uninterrupted(plate_scene(), true, 1000);
-        const Outcome resumed = interrupted(plate_scene(), true, 750, 1000, "plate.plab");
+        const Outcome whole = uninterrupted(breaking_plate_scene(), true, 1000);
+        const Outcome resumed = interrupted(breaking_plate_scene(), true, 750, 1000, "plate.plab");
         // the stop falls while bonds are breaking: some before it, more after
         REQUIRE(resumed.breaks_at_k > 0);
         REQUIRE(whole.breaks.size() / 4 > resumed.breaks_at_k);
