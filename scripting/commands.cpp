@@ -2,6 +2,7 @@
 #include "generators.hpp"
 #include "metrics.hpp"
 #include "simulation.hpp"
+#include "plab_core/error.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -12,12 +13,6 @@
 namespace plab {
 
 namespace {
-
-std::string fmt_g(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
-    return buf;
-}
 
 int component(const Node& n, const std::string& c) {
     if (c == "x") return 0;
@@ -429,7 +424,7 @@ bool Simulation::run_command(const Command& c) {
         while (w.time < end - 1e-12 * std::fabs(end)) {
             if (c.stop_on_bond_break && w.bond_breaks.size() > command_breaks_before_) break;
             if (done() >= c.max_cycles)
-                throw RunError(c.path + ": reached t = " + fmt_g(w.time) + " s of " + fmt_g(end) +
+                throw RunError(c.path + ": reached t = " + short_number(w.time) + " s of " + short_number(end) +
                                " s after max_cycles = " + std::to_string(c.max_cycles) +
                                " cycles; raise max_cycles or check the timestep");
             if (stop_signal()) return false;
@@ -444,8 +439,8 @@ bool Simulation::run_command(const Command& c) {
             if (d % 10 == 0) {  // the ratio is checked every 10 cycles
                 if (w.unbalanced_force_ratio() <= c.value) return true;
                 if (d >= c.max_cycles)
-                    throw RunError(c.path + ": ratio " + fmt_g(w.unbalanced_force_ratio()) + " still above " +
-                                   fmt_g(c.value) + " after " + std::to_string(d) +
+                    throw RunError(c.path + ": ratio " + short_number(w.unbalanced_force_ratio()) + " still above " +
+                                   short_number(c.value) + " after " + std::to_string(d) +
                                    " cycles (max_cycles); add local or viscous damping, or raise max_cycles");
             }
             if (stop_signal()) return false;
@@ -501,8 +496,8 @@ void Simulation::run() {
         if (file.empty()) throw;
         throw RunError(std::string(e.what()) + "\nthe last good state is saved in " + file +
                        "; continue from it with a smaller timestep, e.g.\n  plab restart " + file +
-                       (w.fixed_dt > 0 ? " --set timestep.fixed=" + fmt_g(0.5 * w.fixed_dt)
-                                       : " --set timestep.safety_factor=" + fmt_g(0.5 * w.safety_factor)));
+                       (w.fixed_dt > 0 ? " --set timestep.fixed=" + short_number(0.5 * w.fixed_dt)
+                                       : " --set timestep.safety_factor=" + short_number(0.5 * w.safety_factor)));
     } catch (...) {
         finish_run(cpu0);
         throw;

@@ -3,10 +3,18 @@
 // step and a likely cause.
 #pragma once
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace plab {
+
+// A number in a message: three significant digits ("2.1e-05", "0.9").
+inline std::string short_number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
 
 // Bad input (scene, command line, plug-in library): the message is complete.
 class InputError : public std::runtime_error {

@@ -21,14 +21,6 @@
 
 namespace plab {
 
-namespace {
-std::string fmt(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
-    return buf;
-}
-} // namespace
-
 // After every change of the scene (and at the start) the balance, the energy
 // turned over so far and the domain are measured afresh: a `set velocity`
 // adds kinetic energy that no force did work for, and is not an instability.
@@ -143,11 +135,11 @@ void World::check_energy() {
     }
     Diagnostic d;
     d.quantity = "energy gain";
-    d.subject = bodies.size() ? "largest kinetic energy " + fmt(top_kinetic) + " J on ball id " +
+    d.subject = bodies.size() ? "largest kinetic energy " + short_number(top_kinetic) + " J on ball id " +
                                     std::to_string(bodies.id[top]) + " (group " + groups_[bodies.group[top]] + ")"
                               : "no bodies";
-    d.detail = "the energy balance rose by " + fmt(gain) + " J with no work to account for it, more than " +
-               fmt(stability.energy_gain) + " x the " + fmt(turnover) + " J turned over (scene.stability.energy_gain)";
+    d.detail = "the energy balance rose by " + short_number(gain) + " J with no work to account for it, more than " +
+               short_number(stability.energy_gain) + " x the " + short_number(turnover) + " J turned over (scene.stability.energy_gain)";
     d.cause = "a timestep close to the stable limit (lower timestep.safety_factor or timestep.fixed), or a plug-in "
               "that adds energy";
     stop(d);
@@ -168,8 +160,8 @@ void World::overlap_stop(const ModelInstance& inst, const ContactSet& s) {
         Diagnostic d;
         d.quantity = "overlap";
         d.subject = contact_name(inst, s, k);
-        d.detail = "overlap " + fmt(-s.gap[k]) + " m is " + fmt(-s.gap[k] / r) + " x the smaller radius " + fmt(r) +
-                   " m, above the limit " + fmt(inst.max_overlap) + " (contact_models[].max_overlap)";
+        d.detail = "overlap " + short_number(-s.gap[k]) + " m is " + short_number(-s.gap[k] / r) + " x the smaller radius " + short_number(r) +
+                   " m, above the limit " + short_number(inst.max_overlap) + " (contact_models[].max_overlap)";
         d.cause = "the contact is too soft for the load or the impact speed (the overlap of an impact grows as "
                   "v sqrt(m/k)): raise the stiffness or lower the speed";
         stop(d);
@@ -196,7 +188,7 @@ std::string assess_timestep(const StableStep& s, double dt, const std::string& w
     if (!(s.critical < kInf) || !(s.critical > 0) || !(dt > 0)) return "";
     const double ratio = dt / s.critical;
     if (!(ratio > 1.0)) return "";
-    return "timestep " + fmt(dt) + " s is " + fmt(ratio) + "x the stable limit " + fmt(s.critical) + " s of " +
+    return "timestep " + short_number(dt) + " s is " + short_number(ratio) + "x the stable limit " + short_number(s.critical) + " s of " +
            s.limited_by + when + " (lower timestep.fixed, or use the automatic step)";
 }
 
