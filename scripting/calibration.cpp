@@ -28,10 +28,24 @@ double tensile_strength_factor(const Node& n, double nu, double rmul) {
                          "\"along_bonds\" (strength for tension along a row of bonds)");
 }
 
+// Bond shear strength / tau_ult. Under pure shear tau along a row of bonds
+// (eps_xy = tau (1 + nu)/E) the bonds of that row carry the largest shear,
+//   fs = Ks 2R eps_xy = 2 R t tau (1 - 3 nu) / (sqrt3 (1 - nu))   (Ks from eq. 37),
+// and the bond stress is fs / (2 R_bar t) (eq. 46). The thesis's eq. 44 is
+// this with tau_ult = (sqrt3/4) sigma_ult = 0.43 sigma_ult, which is also the
+// shear of the 60 deg bonds under uniaxial sigma_ult: with "along_bonds" a
+// row pulled to sigma_ult then reaches its tensile and its shear strength
+// together. A material's own shear strength (6061-T6 aluminium: 207 MPa for
+// sigma_ult 310 MPa) is given as tau_ult.
+double shear_strength(const Node& n, double nu, double sigma_ult, double rmul) {
+    const double tau_ult = n.number_or("tau_ult", std::sqrt(3.0) / 4.0 * sigma_ult, 0.0, kInf, true, true);
+    return tau_ult * (1.0 - 3.0 * nu) / (std::sqrt(3.0) * (1.0 - nu) * rmul);  // eqs. 44, 46
+}
+
 } // namespace
 
 json hexagonal_2d_calibration(const Node& n, int dim) {
-    n.allow_keys({"method", "E", "nu", "sigma_ult", "radius", "thickness", "pb_rmul", "tension"});
+    n.allow_keys({"method", "E", "nu", "sigma_ult", "radius", "thickness", "pb_rmul", "tension", "tau_ult"});
     if (dim != 2)
         n.at("method").fail("the hexagonal_2d calibration (thesis eqs. 36-46) is derived for 2D plane stress; "
                             "give kn, ks, pb_kn, pb_ks, pb_ten and pb_coh explicitly in a 3D scene");
@@ -62,7 +76,7 @@ json hexagonal_2d_calibration(const Node& n, int dim) {
     p["kn"] = 0.01 * Kn / 1.01;
     p["ks"] = 0.01 * Ks / 1.01;
     p["pb_ten"] = sigma_ult * tensile_strength_factor(n, nu, rmul);
-    p["pb_coh"] = sigma_ult * (1.0 - 3.0 * nu) / (4.0 * (1.0 - nu) * rmul);                 // eqs. 44, 46
+    p["pb_coh"] = shear_strength(n, nu, sigma_ult, rmul);
     p["pb_rmul"] = rmul;
     return p;
 }

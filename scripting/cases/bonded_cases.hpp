@@ -26,8 +26,10 @@ struct Cantilever {
     double fibre_stress_scale = 0;  // RMS of -M y / I over those balls, Pa
     double first_break_load = 0;  // by linearity: P σc / max σ over bonds (eq. 49 with the scene's β̄), N
     double first_break_load_centre = 0;  // the same with β̄ = 0: the stress at the bond's centre line, N
-    double break_x = 0, break_y = 0;  // where that bond is, m
-    bool break_in_tension = false;
+    double first_tension_break_load = 0;  // P σc / max σ over bonds (eq. 49), N
+    double first_shear_break_load = 0;    // P τc / max τ over bonds (eq. 50), N
+    double break_x = 0, break_y = 0;  // where the first bond to break is, m
+    bool break_in_tension = false;    // false: it breaks in shear
     double strength_load = 0;  // σ_ult h² / (6 L), N
     // the load at which the equivalent beam's stress at the bottom row's
     // centre, where the first bond sits, reaches σ_ult: a lattice calibrated
@@ -36,16 +38,24 @@ struct Cantilever {
     double cpu_seconds = 0;
 };
 
+// How the beam's bond strengths are set (scripting/calibration.cpp,
+// docs/bonded-structures.md).
+struct StrengthRule {
+    std::string tension = "across_bonds";  // "across_bonds" (thesis eq. 43) or "along_bonds"
+    double moment_factor = 0.0;            // β̄ of eq. 49 (the thesis sets it to 0)
+    double tau_ult = 0.0;                  // material shear strength, Pa; 0: eq. 44's √3/4 σ_ult
+};
+// The rule the cantilever_failure case judges: the fibres are rows of bonds
+// along the tension, β̄ = 1 puts σ at the bond's outer edge (for the outer
+// row the beam's surface), and the shear strength is the aluminium's own
+// (6061-T6: 207 MPa for σ_ult 310 MPa).
+inline StrengthRule beam_fibre_rule() { return {"along_bonds", 1.0, 207e6}; }
+
 // Static tip load P on the bottom-right ball, left end clamped, solved with
 // viscous damping to an unbalanced-force ratio. L = 0.201 m, E = 70 GPa,
 // ν = 0.33, σ_ult = 310 MPa (thesis Table 4); rows chosen so the height is
 // closest to 6.196 mm.
-// clamp_rotation false: the clamped balls keep their spin free (a pinned row).
-// tension: the calibration's strength rule, "across_bonds" (thesis eq. 43) or
-// "along_bonds" (see scripting/calibration.cpp)
-// moment_factor: β̄ of eq. 49 (the thesis sets it to 0)
-Cantilever static_cantilever(double radius, double load, double ratio, const std::string& tension = "across_bonds",
-                             double moment_factor = 0.0, bool clamp_rotation = true);
+Cantilever static_cantilever(double radius, double load, double ratio, const StrengthRule& rule = {});
 
 struct VelocityFailure {
     double reaction = 0;     // force on the driven ball when the first bond broke, N
@@ -56,8 +66,7 @@ struct VelocityFailure {
 };
 // The thesis failure test: the bottom-right ball driven upward at `velocity`
 // with local damping until the first bond breaks.
-VelocityFailure velocity_failure(double radius, double velocity, const std::string& tension = "across_bonds",
-                                 double moment_factor = 0.0);
+VelocityFailure velocity_failure(double radius, double velocity, const StrengthRule& rule = {});
 
 struct Impact {
     double input_energy = 0;      // kinetic energy of the projectile, J

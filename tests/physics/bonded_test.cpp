@@ -86,30 +86,28 @@ TEST_CASE("the hexagonal calibration refuses nu >= 1/3 and says why", "[bonds][s
 namespace {
 
 // Largest sigma/sigma_c and tau/tau_c over the bonds of a hexagonal lattice
-// (rows along x) after one step of the affine strain of uniaxial stress
-// sigma_ult / 2 along x (or y), so that no bond breaks: eps_axial = 1.01 sigma_ult / (2 E) (in tension only
-// the bonds act, 1/1.01 of the calibrated stiffness, eq. 42), eps_lateral =
-// -nu eps_axial.
-std::pair<double, double> strength_use_under_uniaxial_stress(const std::string& tension, bool along_x) {
+// (rows along x) after one step of the affine strain (exx, eyy, exy), the
+// balls' spins held at zero, with the calibration keys `extra` added.
+std::pair<double, double> strength_use_under_strain(const json& extra, double exx, double eyy, double exy) {
     const double r = 0.001, E = 70e9, nu = 0.3, sigma_ult = 310e6, dt = 1e-7;
+    json calibrate = {{"method", "hexagonal_2d"}, {"E", E}, {"nu", nu}, {"sigma_ult", sigma_ult}, {"radius", r}};
+    calibrate.update(extra);
     json scene = {{"dimension", 2},
                   {"plugins", {"linear_pbond"}},
                   {"bodies", {{{"type", "lattice"}, {"group", "strip"}, {"packing", "hexagonal"},
                                {"box", {{"min", {0, 0}}, {"max", {0.012, 0.008}}}}, {"radius", r}, {"density", 2800},
                                {"fix", {"all"}}}}},
                   {"contact_models", {{{"groups", {"strip", "strip"}}, {"model", "linear_pbond"},
-                                       {"calibrate", {{"method", "hexagonal_2d"}, {"E", E}, {"nu", nu},
-                                                      {"sigma_ult", sigma_ult}, {"radius", r}, {"tension", tension}}},
-                                       {"properties", {{"pb_mcf", 0.0}}}}}},
+                                       {"calibrate", calibrate}, {"properties", {{"pb_mcf", 0.0}}}}}},
                   {"timestep", {{"fixed", dt}}}};
     Simulation sim(scene);
     sim.set_quiet(true);
     World& w = sim.world();
     REQUIRE(w.bond(0, 0, 1e-9 * r) > 0);
-    const double eps = 1.01 * sigma_ult / (2 * E);
-    const double ex = along_x ? eps : -nu * eps, ey = along_x ? -nu * eps : eps;
-    for (std::size_t i = 0; i < w.bodies.size(); ++i)  // fixed balls move at their prescribed velocity
-        w.bodies.velocity[i] = Vec(ex * w.bodies.position[i].x() / dt, ey * w.bodies.position[i].y() / dt, 0);
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) {  // fixed balls move at their prescribed velocity
+        const Vec& p = w.bodies.position[i];
+        w.bodies.velocity[i] = Vec((exx * p.x() + exy * p.y()) / dt, (exy * p.x() + eyy * p.y()) / dt, 0);
+    }
     w.mark_dirty();
     w.prepare();
     w.step();
@@ -134,7 +132,19 @@ std::pair<double, double> strength_use_under_uniaxial_stress(const std::string& 
         sigma = std::max(sigma, h[fn] / (2 * r) / ten);
         tau = std::max(tau, std::hypot(h[fsx], h[fsy]) / (2 * r) / coh);
     }
-    return {2 * sigma, 2 * tau};  // at sigma_ult
+    return {sigma, tau};
+}
+
+// ... under uniaxial stress sigma_ult / 2 along x (or y), so that no bond
+// breaks: eps_axial = 1.01 sigma_ult / (2 E) (in tension only the bonds act,
+// 1/1.01 of the calibrated stiffness, eq. 42), eps_lateral = -nu eps_axial;
+// scaled to sigma_ult.
+std::pair<double, double> strength_use_under_uniaxial_stress(const std::string& tension, bool along_x) {
+    const double E = 70e9, nu = 0.3, sigma_ult = 310e6;
+    const double eps = 1.01 * sigma_ult / (2 * E);
+    const auto [sigma, tau] = strength_use_under_strain({{"tension", tension}}, along_x ? eps : -nu * eps,
+                                                        along_x ? -nu * eps : eps, 0.0);
+    return {2 * sigma, 2 * tau};
 }
 
 } // namespace
@@ -152,6 +162,24 @@ TEST_CASE("bond strengths calibrated across the bonds (thesis eqs. 43-46) are re
     CHECK(along_x.second == Approx(1.0).epsilon(0.01));
     const auto along_y = strength_use_under_uniaxial_stress("along_bonds", false);
     CHECK(along_y.first == Approx(weak).epsilon(0.01));
+}
+
+TEST_CASE("the calibrated bond shear strength is reached when the lattice is sheared along its rows to the "
+          "material's shear strength tau_ult (default sqrt(3)/4 sigma_ult, thesis eq. 44)", "[bonds][calibration]") {
+    const double E = 70e9, nu = 0.3, sigma_ult = 310e6;
+    // pure shear tau / 2 (no bond breaks): eps_xy = 1.01 (1 + nu) tau / (2 E)
+    // (the bonds carry 1/1.01 of the calibrated shear stiffness, eq. 42)
+    for (const double tau_ult : {std::sqrt(3.0) / 4 * sigma_ult, 207e6}) {
+        const json extra = tau_ult == 207e6 ? json{{"tau_ult", tau_ult}} : json::object();
+        const auto use = strength_use_under_strain(extra, 0, 0, 1.01 * (1 + nu) * tau_ult / (2 * E));
+        CHECK(2 * use.second == Approx(1.0).epsilon(0.01));
+    }
+    // a material stronger in shear than eq. 44 assumes: the 60 degree bonds under
+    // uniaxial sigma_ult use only (sqrt3/4 sigma_ult)/tau_ult of the strength
+    const double eps = 1.01 * sigma_ult / (2 * E);
+    const auto uniaxial = strength_use_under_strain({{"tension", "along_bonds"}, {"tau_ult", 207e6}}, eps, -nu * eps, 0);
+    CHECK(2 * uniaxial.second == Approx(std::sqrt(3.0) / 4 * sigma_ult / 207e6).epsilon(0.01));
+    CHECK(2 * uniaxial.first == Approx(1.0).epsilon(0.01));
 }
 
 TEST_CASE("the calibrated cantilever deflects linearly in the load while deflections are small", "[bonds][cantilever]") {
@@ -180,7 +208,7 @@ TEST_CASE("a coarse cantilever (R = 1 mm, 3 rows) deflects within 6 % of Euler-B
     // strength for tension along the bonds and beta = 1 (eq. 49: the stress at
     // the bond's outer edge, for the outer row the beam's surface): the first
     // break meets sigma_ult b h^2/(6L) within 5 % (the issue's tolerance; -3.9 %)
-    const auto along = plab::cases::static_cantilever(0.001, 5000, 1e-5, "along_bonds", 1.0);
+    const auto along = plab::cases::static_cantilever(0.001, 5000, 1e-5, {"along_bonds", 1.0});
     CHECK(along.first_break_load_centre / c.first_break_load == Approx(4 / (3 - 0.33)).epsilon(1e-6));
     CHECK(along.first_break_load == Approx(along.strength_load).epsilon(0.05));
     CHECK(along.break_in_tension);
