@@ -174,7 +174,8 @@ PLAB_VALIDATION_CASE("dam_break",
                      "thesis 5.2: 2D dam break, surge front x/a vs T = t sqrt(2g/a) against Martin & Moyce (1952), "
                      "T <= 3; resolution and h/dp study",
                      [](bool quick) {
-    // the aim, 5 %: on the finest run (full), on a/dp = 10 (quick, in CI)
+    // the aim, 5 %: on a/dp = 40 (full; the thesis's finest run, Table 3, is
+    // dp 4 mm for a 0.146 m column, a/dp 36.5), on a/dp = 10 (quick, in CI)
     CaseResult result{0, 0.05, "mean relative error of x/a against Martin & Moyce (all series, T <= 3)", ""};
     std::vector<DamBreakSpec> runs;
     if (quick) {
@@ -198,6 +199,11 @@ PLAB_VALIDATION_CASE("dam_break",
             shepard.density = 2;
             runs.push_back(shepard);
         }
+        // Convergence, not judged: the front leads Martin & Moyce more as dp
+        // shrinks (Monaghan's viscosity, alpha c0 h / 8, vanishes with h), so
+        // the aim is met by numerical dissipation at a/dp <= 20 and missed
+        // beyond; docs/sph.md has the numbers and the experiment's delay.
+        runs.push_back({0.00125, 1.3});
     }
     char line[400];
     Plot plot{"dam break: surge front", "T = t sqrt(2g/a)", "front x/a", {}};
