@@ -132,6 +132,7 @@ Cantilever static_cantilever(double r, double load, double ratio, const Strength
     double clamp_line = 0;
     for (int row = 0; row < out.rows; ++row) clamp_line += (row % 2 ? 2 * r : r) + r;
     clamp_line /= out.rows;
+    out.clamp_line = clamp_line;
     out.equivalent_height = out.rows * kSqrt3 * r;
     out.equivalent_length = w.bodies.position[tip].x() - clamp_line;
     const double inertia_eq = std::pow(out.equivalent_height, 3) / 12;
@@ -341,7 +342,13 @@ PLAB_VALIDATION_CASE("cantilever_failure",
                       100 * (thesis / c.strength_load - 1), c.cpu_seconds);
         result.details += line;
     }
-    if (!f.tension || f.x > 6 * r || f.y > 2 * r) result.error = kInf;  // must break in tension, bottom, near the clamp
+    // The issue: in tension, on the tension side (the bottom half under an
+    // upward load), within two ball diameters of the clamp face.
+    const double from_clamp = (f.x - s.clamp_line) / (2 * r);
+    std::snprintf(line, sizeof line, "    first break %.2f ball diameters from the clamp face (x = %.4f m; limit 2)\n",
+                  from_clamp, s.clamp_line);
+    result.details += line;
+    if (!f.tension || f.y > 0.5 * s.height || from_clamp > 2.0) result.error = kInf;
     return result;
 });
 

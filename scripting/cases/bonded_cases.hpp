@@ -17,6 +17,7 @@ struct Cantilever {
     // per hexagonal cell of area 2√3 R², so the beam's height is rows·√3 R,
     // and its free length runs from the clamp line to the loaded ball centre.
     double equivalent_height = 0, equivalent_length = 0;
+    double clamp_line = 0;  // where the clamped balls' material ends (mean over the rows), m
     double analytical_equivalent = 0;
     double strength_load_equivalent = 0;  // σ_ult h² / (6 L) with the equivalent beam
     // σ11 of the top and bottom rows between 20 % and 80 % of the length
