@@ -45,7 +45,10 @@ struct ElasticGateSpec {
     double spacing = 0.0025;       // fluid particle spacing dp, m (Table 7: 1.75 mm); h = 1.25 dp (Table 7)
     double gate_radius = 0.000625; // gate ball radius, m (Table 7: size 1.25 mm)
     double clearance = 0.0;        // gap between the floor and the gate's lattice box, m
-    int pressure_mode = 1;         // structure_sph_state: 0 thesis (p = 0), 1 extrapolated
+    // structure_sph_state: 0 thesis (p = 0), 1 extrapolated with the balls' acceleration, 2 without it.
+    // 2: with 1 the full gate's extrapolated density falls below 0.95 rho0 at 0.023 s (its balls'
+    // bond vibration, as gate_fracture); with 2 it runs and peaks at 0.133 s (docs/coupling.md)
+    int pressure_mode = 2;
     double end_time = 0.4;         // s
 };
 
@@ -123,13 +126,38 @@ struct FpsiSpec {
     double spacing = 0.0025, gate_radius = 0.000625;  // fluid dp and structure ball radius, m (>= 3 balls across)
     double bond_strength = 4e4;  // pb_ten = pb_coh, Pa (case I 4e4, case II 2e4)
     double end_time = 0.2;       // s
+    int pressure_mode = 2;       // structure_sph_state (gate_fracture_case.cpp says why 2)
+    // pb_mcf, β̄ in the bond stress (eq. 49). The thesis sets 0 (§3.3.3, under eq. 50): the strengths of
+    // eqs. 43-46 are derived from the bond forces alone. With 1 the clamp row detaches within 4-12 ms
+    // and the plate stands loose on it (docs/coupling.md)
+    double moment_factor = 0.0;
+    double probe_interval = 0;   // s between bond-stress samples (FpsiResult::probes); 0: none
+    double density_band = 0;     // sph_eos density band; 0: its default (5 %)
+};
+
+// The most loaded bonds of the structure at one time (a study probe).
+struct BondStressSample {
+    double t = 0;
+    double sigma_axial = 0;  // largest Fn/A over the bonds (eq. 49 with β̄ = 0), Pa
+    double sigma = 0;        // largest Fn/A + |Mb| R/I (β̄ = 1), Pa
+    double tau = 0;          // largest |Fs|/A (eq. 50, 2D), Pa
+    double x = 0, y = 0;     // midpoint of the bond with the largest sigma, m
+    double tip_dx = 0;       // displacement of the structure's top centre ball, m
+    long broken = 0;         // bonds broken so far
+    int fragments = 0, largest_fragment = 0;  // pieces joined by intact bonds, balls in the largest
 };
 
 struct FpsiResult {
     long bonds = 0, broken = 0, steps = 0;
     int fragments = 0;        // connected pieces of the structure through intact bonds (1: whole)
     int largest_fragment = 0; // balls in the largest piece
-    double first_break_time = -1;
+    double first_break_time = -1;  // first bond to break, s (the thesis does not report it)
+    // the plate falls apart: the first time its balls form two or more pieces joined by intact bonds, s
+    // (thesis: case II "fails around 0.1 s"); -1 if it stays one piece
+    double failure_time = -1;
+    double first_break_x = -1, first_break_y = -1;  // m
+    int first_break_mode = 0;                        // PLAB_BREAK_TENSION / PLAB_BREAK_SHEAR
+    std::vector<BondStressSample> probes;            // every FpsiSpec::probe_interval
     int structure = 0, grains = 0, grains_lost = 0;
     bool penetrated = false;  // a structure ball's centre crossed a wall surface
     double cpu_seconds = 0;

@@ -7,7 +7,9 @@
 // Coupling (plug-in `coupling_fluid_structure`): the gate is a hexagonal
 // packing of bonded balls (`linear_pbond`, hexagonal_2d calibration) that
 // joins the SPH sums through the `sph` model assigned to fluid × gate, with
-// its SPH pressure extrapolated from the fluid (`structure_sph_state`).
+// its SPH pressure extrapolated from the fluid (`structure_sph_state`, mode 2:
+// from the fluid's pressure and gravity, without the balls' own acceleration,
+// which is their bond vibration and blew the full gate up in mode 1).
 //
 // Material: E = 12 MPa, rho = 1100 kg/m3 (Table 7) as the mass of the
 // lattice's cells (ball density rho 2√3/π); nu = 0.33, the thesis's value and

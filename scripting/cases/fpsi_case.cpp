@@ -15,9 +15,26 @@
 // 2.0e4 Pa in Case I and II". The thesis names no shear strength; both
 // pb_ten and pb_coh take the stated value (with the hexagonal calibration's
 // eq. 44 the shear strength would be 0.6 % of it at ν 0.33 and every bond at
-// the clamp would shear at once). The thesis's "derived through [136]"
-// stiffnesses (1.021e9, 1.024e7) do not say which radius they belong to; the
-// stiffness here is the hexagonal calibration of the rubber (eqs. 36–42).
+// the clamp would shear at once). The bond stress is Fn/A (pb_mcf = β̄ = 0),
+// as the thesis sets it (§3.3.3, under eq. 50). Stiffness: the hexagonal
+// calibration of the rubber (eqs. 36-42); its bond normal stiffness
+// A k̄n = Kn/1.01 = 1.024e7 N/m is the thesis's "1.024e7" (its "1.021e9" fits
+// no radius of this plate).
+//
+// Why the first bond breaks at 5-17 ms, not at 0.1 s (docs/coupling.md has
+// the measurements): the plate holds the 0.1 m column from t = 0. Its static
+// clamp bending stress, 6 M / t² with M = ρ g (H L²/2 - L³/3), is 348 kPa,
+// 9 and 17 times the strengths; the step load builds the clamp moment within
+// milliseconds, and a crack opens at the clamp's upstream face (tension) as
+// soon as Fn/A passes the strength. Not noise, vibration, gravity (0.85 kPa)
+// or a hinge lattice: the stress rises smoothly, the same with three and four
+// balls across and in pressure modes 0 and 2. The thesis reports no
+// first-break time, only frames at 0.05 s (both plates deform) and 0.1 s (case
+// II has failed, case I has cracks near the bottom); the case checks when case
+// II falls apart, and misses: 0.042 s at full resolution. The thesis's own
+// coupling (p = 0 on structure balls, mode 0) pushes with about half the
+// pressure, and with it the weak plate is still one piece at 0.1 s. With
+// β̄ = 1 the clamp row parts within 4-12 ms and the plate stands loose on it.
 //
 // The thesis: case II "breaks into more small pieces"; case I "has more
 // cracks near the bottom end" and the fluid overpasses it. The case asserts
@@ -77,7 +94,7 @@ json fpsi_scene(const FpsiSpec& s) {
     rules.push_back({{"groups", {"fluid", "structure"}}, {"model", "sph"}, {"properties", sph}});
     rules.push_back({{"groups", {"structure", "structure"}}, {"model", "linear_pbond"},
                      {"calibrate", {{"method", "hexagonal_2d"}, {"E", rubber_E}, {"nu", rubber_nu}, {"sigma_ult", 1e9}, {"radius", R}}},
-                     {"properties", {{"pb_ten", s.bond_strength}, {"pb_coh", s.bond_strength}}}});
+                     {"properties", {{"pb_ten", s.bond_strength}, {"pb_coh", s.bond_strength}, {"pb_mcf", s.moment_factor}}}});
     rules.push_back({{"groups", {"grains", "structure"}}, {"model", "linear"}, {"properties", grain_contact}});
     rules.push_back({{"groups", {"structure", "boundary"}}, {"model", "linear"},
                      {"properties", {{"kn", 1e5}, {"ks", 1e5}, {"fric", 0.3}, {"dp_nratio", 0.5}}}});
@@ -85,9 +102,12 @@ json fpsi_scene(const FpsiSpec& s) {
         if (pass["name"] == "fluid_particle_drag") pass["properties"]["solid_group"] = grain_group;
     json state = {{"rest_density", 1000.0}, {"speed_of_sound", sph["speed_of_sound"]}, {"gamma", 7.0},
                   {"smoothing_length", h}, {"kernel", 0}, {"structure_group", gate_group}, {"fluid_group", 0},
-                  {"pressure_mode", 2}, {"gravity_y", -9.81}};
+                  {"pressure_mode", s.pressure_mode}, {"gravity_y", -9.81}};
     scene["passes"].push_back({{"name", "structure_sph_state"}, {"properties", state}});
     scene["histories"]["record"].push_back({{"name", "broken"}, {"quantity", "bonds.broken"}});
+    if (s.density_band > 0)
+        for (json& pass : scene["passes"])
+            if (pass["name"] == "sph_eos") pass["properties"]["density_band"] = s.density_band;
     // clamp: the two bottom rows (centres at R and R + √3 R)
     scene["commands"] = {{{"bond", {{"groups", {"structure", "structure"}}, {"gap", 1e-9}}}},
                          {{"set", {{"region", {{"min", {a, -R}}, {"max", {a + gate_t, 2.8 * R}}}}, {"fix", {"all"}}}}},
@@ -122,6 +142,51 @@ std::pair<int, int> fragments(const World& w, int group) {
     return {pieces, largest};
 }
 
+// Index of a named property / history slot of a contact model.
+int property_index(const plab_contact_model_desc& d, const std::string& name) {
+    for (uint32_t k = 0; k < d.property_count; ++k)
+        if (name == d.properties[k].key) return int(k);
+    throw std::logic_error("fpsi: linear_pbond has no property " + name);
+}
+int slot_index(const plab_contact_model_desc& d, const std::string& name) {
+    for (uint32_t k = 0; k < d.history_count; ++k)
+        if (name == d.history[k].name) return int(k);
+    throw std::logic_error("fpsi: linear_pbond has no history slot " + name);
+}
+
+// The largest bond stresses of the intact bonds now (eqs. 49-50 in 2D, from
+// the bond force and moment the model keeps in its history).
+BondStressSample bond_stress(const World& w) {
+    BondStressSample b;
+    b.t = w.time;
+    for (const auto& inst : w.instances()) {
+        if (inst->model != "linear_pbond") continue;
+        const plab_contact_model_desc& d = *inst->desc;
+        const double rmul = inst->props[std::size_t(property_index(d, "pb_rmul"))];
+        const int fn_slot = slot_index(d, "bond_normal_force"), fs_slot = slot_index(d, "bond_shear_force_x"),
+                  m_slot = slot_index(d, "bond_moment_x");
+        const ContactSet& c = inst->balls;
+        for (std::size_t k = 0; k < c.size(); ++k) {
+            const double* h = &c.history[k * inst->stride];
+            if (h[d.persist_slot] <= 0) continue;
+            const std::size_t i = std::size_t(c.end1[k]), j = std::size_t(c.end2[k]);
+            const double r = rmul * std::min(w.bodies.radius[i], w.bodies.radius[j]);
+            const double area = 2 * r, inertia = 2 * r * r * r / 3;  // 2D, unit thickness (eq. 39)
+            const double axial = h[fn_slot] / area;
+            const double moment = std::sqrt(h[m_slot] * h[m_slot] + h[m_slot + 1] * h[m_slot + 1] + h[m_slot + 2] * h[m_slot + 2]);
+            const double shear = std::sqrt(h[fs_slot] * h[fs_slot] + h[fs_slot + 1] * h[fs_slot + 1] + h[fs_slot + 2] * h[fs_slot + 2]);
+            b.sigma_axial = std::max(b.sigma_axial, axial);
+            b.tau = std::max(b.tau, shear / area);
+            if (axial + moment * r / inertia > b.sigma) {
+                b.sigma = axial + moment * r / inertia;
+                b.x = 0.5 * (w.bodies.position[i].x() + w.bodies.position[j].x());
+                b.y = 0.5 * (w.bodies.position[i].y() + w.bodies.position[j].y());
+            }
+        }
+    }
+    return b;
+}
+
 } // namespace
 
 FpsiResult fpsi(const FpsiSpec& s) {
@@ -141,9 +206,30 @@ FpsiResult fpsi(const FpsiSpec& s) {
         if (w.bodies.group[i] == plate && w.bodies.position[i].y() < 2.8 * s.gate_radius) w.bodies.fixity[i] = 63;
     }
     r.bonds = long(w.bond(plate, plate, 1e-9));
+    std::size_t tip = 0;  // the top ball nearest the plate's mid-line
+    for (std::size_t i = 0; i < w.bodies.size(); ++i)
+        if (w.bodies.group[i] == plate && (w.bodies.group[tip] != plate || w.bodies.position[i].y() > w.bodies.position[tip].y() + 1e-9 ||
+                                           (w.bodies.position[i].y() > w.bodies.position[tip].y() - 1e-9 &&
+                                            std::fabs(w.bodies.position[i].x() - a - 0.5 * gate_t) <
+                                                std::fabs(w.bodies.position[tip].x() - a - 0.5 * gate_t))))
+            tip = i;
+    const double tip_x0 = w.bodies.position[tip].x();
+    double next_probe = 0;
+    std::size_t breaks_seen = 0;
     const std::clock_t c_start = std::clock();
     while (w.time < s.end_time) {
         w.step();
+        if (r.failure_time < 0 && w.bond_breaks.size() > breaks_seen) {  // pieces change only when a bond breaks
+            breaks_seen = w.bond_breaks.size();
+            if (fragments(w, plate).first > 1) r.failure_time = w.time;
+        }
+        if (s.probe_interval > 0 && w.time >= next_probe) {
+            r.probes.push_back(bond_stress(w));
+            r.probes.back().tip_dx = w.bodies.position[tip].x() - tip_x0;
+            r.probes.back().broken = long(w.bond_breaks.size());
+            std::tie(r.probes.back().fragments, r.probes.back().largest_fragment) = fragments(w, plate);
+            next_probe += s.probe_interval;
+        }
         for (std::size_t i = 0; i < w.bodies.size(); ++i) {
             if (w.bodies.group[i] != plate) continue;
             const Vec& x = w.bodies.position[i];
@@ -153,7 +239,12 @@ FpsiResult fpsi(const FpsiSpec& s) {
     r.cpu_seconds = double(std::clock() - c_start) / CLOCKS_PER_SEC;
     r.steps = long(w.step_count);
     r.broken = long(w.bond_breaks.size());
-    if (!w.bond_breaks.empty()) r.first_break_time = w.bond_breaks.front().time;
+    if (!w.bond_breaks.empty()) {
+        r.first_break_time = w.bond_breaks.front().time;
+        r.first_break_x = w.bond_breaks.front().point.x();
+        r.first_break_y = w.bond_breaks.front().point.y();
+        r.first_break_mode = w.bond_breaks.front().mode;
+    }
     std::tie(r.fragments, r.largest_fragment) = fragments(w, plate);
     for (std::size_t i = 0; i < w.bodies.size(); ++i) {
         if (w.bodies.group[i] != grains) continue;
@@ -170,34 +261,56 @@ namespace {
 using namespace plab;
 using namespace plab::cases;
 
-// Pass: both cases break, case II (2e4 Pa) ends in more pieces than case I
-// (4e4 Pa), and no structure ball or grain leaves the tank. The error figure
-// is 0 when all hold, else 1. Full: dp 2.5 mm, R 0.625 mm (four balls
-// across), 0.2 s (thesis); quick: dp 5 mm, R 0.83 mm (three across), 0.07 s.
+// Pass: case II (2e4 Pa) falls apart at 0.1 ± 0.05 s (thesis: it "fails
+// around 0.1 s", after its frame at 0.05 s where both plates only deform; its
+// frames are 0.05 s apart, the tolerance gate_fracture uses for "around
+// 0.12 s"), both cases break, case II ends in more pieces than case I, and
+// no structure ball or grain leaves the tank. "Falls apart": the plate's
+// balls first form two pieces joined by intact bonds. The first bond break
+// (a crack at the clamp, 9-17 ms) is reported, not checked: the thesis does
+// not give it. The error figure is |t_fail(II) - 0.1 s|, 1 when another
+// criterion fails. Full: dp 2.5 mm, R 0.625 mm (four balls across), 0.2 s
+// (thesis). Quick (CI): dp 5 mm, R 0.83 mm (three across), 0.1 s, checks the
+// other criteria and reports the time: its coarser plate falls apart at
+// 0.0499 s, 0.1 ms before the window (docs/coupling.md).
 PLAB_VALIDATION_CASE("fpsi",
                      "SPH-DEM fluid-particle-structure (thesis 7.5): two-phase dam break against a bottom-fixed breakable "
-                     "plate; the weaker plate (case II) breaks into more pieces",
+                     "plate; the weaker plate (case II) falls apart at ~0.1 s and into more pieces",
                      [](bool quick) {
     FpsiResult out[2];
-    CaseResult r{0, 0.5, "0 when both plates break, case II ends in more pieces than case I and nothing leaves the tank, else 1", ""};
+    CaseResult r = quick ? CaseResult{0, 0.5,
+                                      "0 when both plates break, case II ends in more pieces than case I and nothing "
+                                      "leaves the tank, else 1 (the fall-apart time is reported, checked in the full run)",
+                                      ""}
+                         : CaseResult{0, 0.05,
+                                      "|time the case II plate falls apart - 0.1 s| (thesis), s; 1 when a plate does not "
+                                      "break, case II does not end in more pieces than case I, or anything leaves the tank",
+                                      ""};
     const double strengths[2] = {4e4, 2e4};
     for (int k = 0; k < 2; ++k) {
         FpsiSpec s;
         s.bond_strength = strengths[k];
-        if (quick) { s.spacing = 0.005; s.gate_radius = 0.005 / 6; s.end_time = 0.07; }
+        if (quick) { s.spacing = 0.005; s.gate_radius = 0.005 / 6; s.end_time = 0.1; }
+        // full, case II: the pieces throw water at 1.6 m/s (c0 = 8.75 times that), a ball reaches
+        // 1.05 rho0 at 0.199 s; as gate_fracture's full run, a 10 % band
+        else s.density_band = 0.1;
         out[k] = fpsi(s);
         const FpsiResult& t = out[k];
-        char buf[500];
+        char buf[600];
         std::snprintf(buf, sizeof buf,
-                      "    case %s (strength %.1e Pa): dp %.4g m, R %.4g m, t = %.2f s: %ld of %ld bonds broke (first at "
-                      "%.3f s), %d pieces (largest %d of %d balls); %d of %d grains left the tank; %ld steps, %.1f s CPU\n",
-                      k == 0 ? "I" : "II", s.bond_strength, s.spacing, s.gate_radius, s.end_time, t.broken, t.bonds,
-                      t.first_break_time, t.fragments, t.largest_fragment, t.structure, t.grains_lost, t.grains, t.steps,
-                      t.cpu_seconds);
+                      "    case %s (strength %.1e Pa, pb_mcf %.0f): dp %.4g m, R %.4g m, t = %.2f s: %ld of %ld bonds broke "
+                      "(first at %.4f s, x %.4f y %.4f m, in %s), fell apart at %.4f s (thesis case II ~0.1 s), %d pieces "
+                      "(largest %d of %d balls); %d of %d grains left the tank; %ld steps, %.1f s CPU\n",
+                      k == 0 ? "I" : "II", s.bond_strength, s.moment_factor, s.spacing, s.gate_radius, s.end_time, t.broken,
+                      t.bonds, t.first_break_time, t.first_break_x, t.first_break_y,
+                      t.first_break_mode == 2 ? "shear" : "tension", t.failure_time, t.fragments, t.largest_fragment,
+                      t.structure, t.grains_lost, t.grains, t.steps, t.cpu_seconds);
         r.details += buf;
-        if (t.broken == 0 || t.penetrated || t.grains_lost > 0) r.error = 1;
     }
-    if (out[1].fragments <= out[0].fragments) r.error = 1;
+    if (!quick) r.error = std::fabs(out[1].failure_time - 0.1);
+    for (const FpsiResult& t : out)
+        if (t.broken == 0 || t.penetrated || t.grains_lost > 0) r.error = 1;
+    if (out[1].fragments <= out[0].fragments || out[1].failure_time < 0) r.error = 1;
     return r;
 });
 

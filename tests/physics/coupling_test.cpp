@@ -316,3 +316,27 @@ TEST_CASE("gate fracture study", "[.gate_fracture_study]") {
         std::fflush(stdout);
     }
 }
+
+// Not part of the test run (hidden tag): fpsi at chosen settings with the
+// structure's largest bond stresses sampled (default every 2 ms; docs/coupling.md),
+// PLAB_STUDY="dp:R:end:strength[:pressure_mode[:pb_mcf[:probe interval[:density band]]]]", comma-separated;
+// strength 1e9 for unbreakable bonds.
+TEST_CASE("fpsi study: bond stresses and the first break", "[.fpsi_study]") {
+    for (const auto& v : study_points("0.005:0.000833333:0.1:1e9", {0.005, 0.000833333, 0.1, 1e9, 2, 0, 0.002, 0})) {
+        cases::FpsiSpec s;
+        s.spacing = v[0]; s.gate_radius = v[1]; s.end_time = v[2]; s.bond_strength = v[3];
+        s.pressure_mode = int(v[4]); s.moment_factor = v[5]; s.probe_interval = v[6];
+        s.density_band = v[7];
+        const cases::FpsiResult r = cases::fpsi(s);
+        std::printf("dp %.4f R %.6f strength %.3g mode %d mcf %.2f: %ld of %ld broken, first at %.4f s (%.4f, %.4f) %s; "
+                    "in pieces from %.4f s; %d pieces (largest %d of %d); %ld steps, %.0f s CPU\n",
+                    s.spacing, s.gate_radius, s.bond_strength, s.pressure_mode, s.moment_factor, r.broken, r.bonds,
+                    r.first_break_time, r.first_break_x, r.first_break_y, r.first_break_mode == 2 ? "shear" : "tension",
+                    r.failure_time, r.fragments, r.largest_fragment, r.structure, r.steps, r.cpu_seconds);
+        std::printf("  t (s)   max Fn/A (kPa)  max sigma b=1 (kPa) at (x, y)   max tau (kPa)  tip dx (mm)  broken  pieces (largest)\n");
+        for (const auto& p : r.probes)
+            std::printf("  %.3f   %8.2f   %8.2f (%.4f, %.4f)   %8.2f   %7.3f   %4ld   %3d (%d)\n", p.t, p.sigma_axial / 1e3, p.sigma / 1e3, p.x,
+                        p.y, p.tau / 1e3, p.tip_dx * 1e3, p.broken, p.fragments, p.largest_fragment);
+        std::fflush(stdout);
+    }
+}
