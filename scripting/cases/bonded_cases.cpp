@@ -21,18 +21,6 @@ const double kSqrt3 = std::sqrt(3.0);
 int rows_for(double r) { return int(std::lround((kHeight - 2 * r) / (kSqrt3 * r))) + 1; }
 double height_of(double r, int rows) { return 2 * r + (rows - 1) * kSqrt3 * r; }
 
-int history_slot(const plab_contact_model_desc& d, const std::string& name) {
-    for (uint32_t h = 0; h < d.history_count; ++h)
-        if (name == d.history[h].name) return int(h);
-    throw std::runtime_error("model " + std::string(d.name) + " has no history slot " + name);
-}
-
-double property(const ModelInstance& inst, const std::string& key) {
-    for (uint32_t p = 0; p < inst.desc->property_count; ++p)
-        if (key == inst.desc->properties[p].key) return inst.props[p];
-    throw std::runtime_error("model " + inst.model + " has no property " + key);
-}
-
 // The beam: a hexagonal lattice bonded with the thesis calibration, the
 // left end (ball centres within 2.2 R of x = 0) clamped.
 std::unique_ptr<Simulation> beam(double r, const json& damping, const StrengthRule& rule) {
@@ -144,16 +132,16 @@ Cantilever static_cantilever(double r, double load, double ratio, const Strength
     // first break by linearity: the lattice is linear-elastic until a bond
     // breaks, in tension (eq. 49) or in shear (eq. 50, 2D: no twist)
     const ModelInstance& inst = *w.instances()[0];
-    const int state = history_slot(*inst.desc, "bond_state"), fn = history_slot(*inst.desc, "bond_normal_force");
-    const int fs = history_slot(*inst.desc, "bond_shear_force_x");
-    const int mz = history_slot(*inst.desc, "bond_moment_z");
-    const double sigma_c = property(inst, "pb_ten"), tau_c = property(inst, "pb_coh");
+    const int state = inst.history_slot("bond_state"), fn = inst.history_slot("bond_normal_force");
+    const int fs = inst.history_slot("bond_shear_force_x");
+    const int mz = inst.history_slot("bond_moment_z");
+    const double sigma_c = inst.property("pb_ten"), tau_c = inst.property("pb_coh");
     double worst = 0, worst_centre = 0, worst_tension = 0, worst_shear = 0;
     const ContactSet& s = inst.balls;
     for (std::size_t k = 0; k < s.size(); ++k) {
         const double* h = &s.history[k * inst.stride];
         if (h[state] <= 0) continue;
-        const double r_bar = std::min(s.radius1[k], s.radius2[k]) * property(inst, "pb_rmul");
+        const double r_bar = std::min(s.radius1[k], s.radius2[k]) * inst.property("pb_rmul");
         const double area = 2 * r_bar, inertia = 2 * r_bar * r_bar * r_bar / 3;  // 2D strip, unit thickness
         const double centre = h[fn] / area;
         const double sigma = centre + rule.moment_factor * std::fabs(h[mz]) * r_bar / inertia;  // eq. 49

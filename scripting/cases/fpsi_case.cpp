@@ -142,18 +142,6 @@ std::pair<int, int> fragments(const World& w, int group) {
     return {pieces, largest};
 }
 
-// Index of a named property / history slot of a contact model.
-int property_index(const plab_contact_model_desc& d, const std::string& name) {
-    for (uint32_t k = 0; k < d.property_count; ++k)
-        if (name == d.properties[k].key) return int(k);
-    throw std::logic_error("fpsi: linear_pbond has no property " + name);
-}
-int slot_index(const plab_contact_model_desc& d, const std::string& name) {
-    for (uint32_t k = 0; k < d.history_count; ++k)
-        if (name == d.history[k].name) return int(k);
-    throw std::logic_error("fpsi: linear_pbond has no history slot " + name);
-}
-
 // The largest bond stresses of the intact bonds now (eqs. 49-50 in 2D, from
 // the bond force and moment the model keeps in its history).
 BondStressSample bond_stress(const World& w) {
@@ -161,14 +149,13 @@ BondStressSample bond_stress(const World& w) {
     b.t = w.time;
     for (const auto& inst : w.instances()) {
         if (inst->model != "linear_pbond") continue;
-        const plab_contact_model_desc& d = *inst->desc;
-        const double rmul = inst->props[std::size_t(property_index(d, "pb_rmul"))];
-        const int fn_slot = slot_index(d, "bond_normal_force"), fs_slot = slot_index(d, "bond_shear_force_x"),
-                  m_slot = slot_index(d, "bond_moment_x");
+        const double rmul = inst->property("pb_rmul");
+        const int fn_slot = inst->history_slot("bond_normal_force"), fs_slot = inst->history_slot("bond_shear_force_x"),
+                  m_slot = inst->history_slot("bond_moment_x");
         const ContactSet& c = inst->balls;
         for (std::size_t k = 0; k < c.size(); ++k) {
             const double* h = &c.history[k * inst->stride];
-            if (h[d.persist_slot] <= 0) continue;
+            if (h[inst->desc->persist_slot] <= 0) continue;
             const std::size_t i = std::size_t(c.end1[k]), j = std::size_t(c.end2[k]);
             const double r = rmul * std::min(w.bodies.radius[i], w.bodies.radius[j]);
             const double area = 2 * r, inertia = 2 * r * r * r / 3;  // 2D, unit thickness (eq. 39)
@@ -303,7 +290,7 @@ PLAB_VALIDATION_CASE("fpsi",
                       "(largest %d of %d balls); %d of %d grains left the tank; %ld steps, %.1f s CPU\n",
                       k == 0 ? "I" : "II", s.bond_strength, s.moment_factor, s.spacing, s.gate_radius, s.end_time, t.broken,
                       t.bonds, t.first_break_time, t.first_break_x, t.first_break_y,
-                      t.first_break_mode == 2 ? "shear" : "tension", t.failure_time, t.fragments, t.largest_fragment,
+                      t.first_break_mode == PLAB_BREAK_SHEAR ? "shear" : "tension", t.failure_time, t.fragments, t.largest_fragment,
                       t.structure, t.grains_lost, t.grains, t.steps, t.cpu_seconds);
         r.details += buf;
     }

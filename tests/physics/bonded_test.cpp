@@ -113,18 +113,9 @@ std::pair<double, double> strength_use_under_strain(const json& extra, double ex
     w.step();
     CHECK(w.bond_breaks.empty());
     const ModelInstance& inst = *w.instances()[0];
-    auto slot = [&](const char* name) {
-        for (uint32_t k = 0; k < inst.desc->history_count; ++k)
-            if (std::string(inst.desc->history[k].name) == name) return int(k);
-        FAIL("no history slot " << name);
-        return -1;
-    };
-    const int fn = slot("bond_normal_force"), fsx = slot("bond_shear_force_x"), fsy = slot("bond_shear_force_y");
-    double ten = 0, coh = 0;
-    for (uint32_t k = 0; k < inst.desc->property_count; ++k) {
-        if (std::string(inst.desc->properties[k].key) == "pb_ten") ten = inst.props[k];
-        if (std::string(inst.desc->properties[k].key) == "pb_coh") coh = inst.props[k];
-    }
+    const int fn = inst.history_slot("bond_normal_force"), fsx = inst.history_slot("bond_shear_force_x"),
+              fsy = inst.history_slot("bond_shear_force_y");
+    const double ten = inst.property("pb_ten"), coh = inst.property("pb_coh");
     double sigma = 0, tau = 0;
     const ContactSet& s = inst.balls;
     for (std::size_t k = 0; k < s.size(); ++k) {

@@ -35,11 +35,7 @@ json two_ball_scene() {
 }
 
 double model_property(const plab::World& w, const char* key) {
-    const auto& inst = *w.instances().at(0);
-    for (uint32_t p = 0; p < inst.desc->property_count; ++p)
-        if (std::strcmp(inst.desc->properties[p].key, key) == 0) return inst.props[p];
-    FAIL("no property " << key);
-    return 0;
+    return w.instances().at(0)->property(key);
 }
 
 } // namespace

@@ -57,6 +57,11 @@ struct ModelInstance {
     double max_overlap = kInf;  // stability: overlap limit, fraction of the smaller radius (1)
     std::vector<int> fields_read, fields_accumulated;  // world field indices
     ContactSet balls, walls;
+
+    // By name, for measurements: a history slot's index and a property's
+    // value (std::out_of_range when the model has none of that name).
+    int history_slot(const std::string& name) const;
+    double property(const std::string& name) const;
 };
 
 struct PassInstance {
