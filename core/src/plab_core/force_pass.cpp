@@ -3,6 +3,7 @@
 // per batch of contacts, then sums forces onto bodies in a fixed order.
 #include "world.hpp"
 
+#include "dense_batch.hpp"
 #include "error.hpp"
 
 #include <algorithm>
@@ -262,11 +263,21 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     if (inst.fields_read.size() > 16) throw PluginError("contact model '" + inst.model + "' reads more than 16 body fields");
     for (std::size_t f = 0; f < inst.fields_read.size(); ++f) read_cols[f] = fields_[inst.fields_read[f]].data();
     const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
+    // ball–ball rows go to the model packed (dense_batch.hpp), unless it
+    // accumulates body fields (those sums walk the full columns, reduce())
+    const bool dense = with_geometry && inst.fields_accumulated.empty();
     int failed = 0;
     bool exceeded = false;
 #pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::size_t o = b * kContactBatch, m = std::min(kContactBatch, n - o);
+        if (dense) {
+            DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
+            exceeded |= pack_ball_rows(inst, s, o, o + m, d);
+            if (call_model_dense(inst, d, dim, last_dt, read_cols) != 0) failed = 1;
+            unpack_rows(si, inst, d, o, o + m);
+            continue;
+        }
         if (with_geometry) exceeded |= geometry_rows(inst, s, o, o + m);
         if (call_model(inst, s, o, m, PLAB_STAGE_FORCES, read_cols, false) != 0) failed = 1;
         scatter_rows(si, o, o + m);

@@ -42,6 +42,8 @@ struct ContactSet {
     void resize_columns(std::size_t n, int n_accumulated);
 };
 
+struct DenseBatch;  // force_pass.cpp: the active rows of one batch, packed for the model
+
 // Rows per call of a model (one C ABI call per batch). Batches are fixed row
 // ranges, never per thread, so sums taken per batch are thread-count free.
 constexpr std::size_t kContactBatch = 512;
@@ -276,6 +278,9 @@ private:
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
+    bool pack_ball_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end, DenseBatch& d);
+    void unpack_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
+                     std::size_t end);
     int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
                    const double* const* read_cols, bool clear);
     [[noreturn]] void model_failed(const ModelInstance& inst) const;
