@@ -127,25 +127,15 @@ int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double d
 // Back from the packed rows of batch [begin, end): history, and what the
 // readers of the contact columns use (force, moments, point, normal,
 // stiffnesses, step limit: outputs, stress, stable step, bond breaks,
-// checkpoints); then each row's force and moments to the bodies' slots and
-// the batch's energy sums, as scatter_rows() does for full columns.
+// checkpoints); then each row's force and moments added to the chunk's partial
+// sums, and the batch's energy sums, as scatter_rows() does for full columns.
 void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
-                        std::size_t end) {
+                        const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const auto& B = bodies;
     const std::size_t stride = std::size_t(inst.stride);
-    std::uint8_t* live = slot_live_[si].data();
-    const std::uint32_t* slot1 = slot1_[si].data();
-    const std::uint32_t* slot2 = slot2_[si].data();
-    double* fm = slot_fm_.data();
-    for (std::size_t k = begin; k < end; ++k) {  // rows that just stopped being active (rare)
-        const bool active = s.active[k] != 0;
-        if (!active && live[k]) {
-            std::fill_n(fm + kSlotDoubles * slot1[k], kSlotDoubles, 0.0);
-            std::fill_n(fm + kSlotDoubles * slot2[k], kSlotDoubles, 0.0);
-        }
-        live[k] = active;
-    }
+    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
+    const std::int32_t lo = ch.lo;
     double strain = 0, slip = 0, dashpot = 0, broken = 0;
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
@@ -165,10 +155,10 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
         const Vec f2(&d.force[3 * a]), point(&d.point[3 * a]);
         const Vec m1 = (point - B.position[d.end1[a]]).cross(-f2) + Vec(&d.moment1[3 * a]);
         const Vec m2 = (point - B.position[d.end2[a]]).cross(f2) + Vec(&d.moment2[3 * a]);
-        double* f1m1 = fm + kSlotDoubles * slot1[k];
-        double* f2m2 = fm + kSlotDoubles * slot2[k];
-        for (int c = 0; c < 3; ++c) { f1m1[c] = -f2[c]; f1m1[3 + c] = m1[c]; }
-        for (int c = 0; c < 3; ++c) { f2m2[c] = f2[c]; f2m2[3 + c] = m2[c]; }
+        double* f1m1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
+        double* f2m2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
+        for (int c = 0; c < 3; ++c) { f1m1[c] -= f2[c]; f1m1[3 + c] += m1[c]; }
+        for (int c = 0; c < 3; ++c) { f2m2[c] += f2[c]; f2m2[3 + c] += m2[c]; }
     }
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = 0;

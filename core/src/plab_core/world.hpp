@@ -42,7 +42,7 @@ struct ContactSet {
     void resize_columns(std::size_t n, int n_accumulated);
 };
 
-struct DenseBatch;  // force_pass.cpp: the active rows of one batch, packed for the model
+struct DenseBatch;  // dense_batch.hpp: the active rows of one batch, packed for the model
 
 // Rows per call of a model (one C ABI call per batch). Batches are fixed row
 // ranges, never per thread, so sums taken per batch are thread-count free.
@@ -206,17 +206,27 @@ private:
     std::vector<Entry> entries_;
     std::vector<ContactSet*> sets_;
     std::vector<const ModelInstance*> set_owner_;
-    // CSR slot of each row's end 1 / end 2 in entries_ (per set), and what
-    // each slot adds to its body this cycle: force and moment (kSlotDoubles
-    // per slot, one cache line); slot_live_: the row's slots are non-zero
+    // The deterministic reduction. Each set's rows are cut into chunks of
+    // whole batches, their number a function of the row count only (never of
+    // the threads). A chunk adds its active rows' forces and moments, in row
+    // order, into its own partial array over the bodies it touches (lo..hi,
+    // kSlotDoubles per body: force, moment), and reduce() adds the partials
+    // to each body in chunk order: the same sums for any thread count.
     static constexpr std::size_t kSlotDoubles = 6;
-    std::vector<std::vector<std::uint32_t>> slot1_, slot2_;
-    std::vector<double> slot_fm_;
-    std::vector<std::vector<std::uint8_t>> slot_live_;
+    struct Chunk {
+        std::uint32_t set;
+        std::size_t begin, end;  // rows
+        std::int32_t lo, hi;     // bodies touched (hi < lo: none)
+        std::size_t offset;      // into partial_fm_
+    };
+    std::vector<Chunk> chunks_;
+    std::vector<std::uint32_t> set_chunks_;  // chunks of set si: [set_chunks_[si], set_chunks_[si + 1])
+    std::vector<double> partial_fm_;
+    void build_chunks();
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
-    void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end);
-    void scatter_to_slots(std::uint32_t set_index);
+    void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end, const Chunk& chunk);
+    void scatter_to_chunks(std::uint32_t set_index);
     void force_sweep(std::uint32_t set_index, bool with_geometry);
     // per-body stiffness sums of the last force pass, summed on demand
     mutable std::vector<double> k_trans_, k_rot_;
@@ -280,7 +290,7 @@ private:
     bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     bool pack_ball_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end, DenseBatch& d);
     void unpack_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
-                     std::size_t end);
+                     const Chunk& chunk);
     int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
                    const double* const* read_cols, bool clear);
     [[noreturn]] void model_failed(const ModelInstance& inst) const;
