@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace plab {
 
@@ -15,16 +16,24 @@ inline void put(double* col, std::size_t a, const Vec& v) {
 inline void copy3(double* to, std::size_t k, const double* from, std::size_t a) {
     to[3 * k] = from[3 * a]; to[3 * k + 1] = from[3 * a + 1]; to[3 * k + 2] = from[3 * a + 2];
 }
+inline std::uint64_t bits(double v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+}
 } // namespace
 
 // Rows [begin, end): the range test of every candidate (gap, distance and
 // the active flag stay in the set's columns, for every reader), the history
-// of rows out of range back to its declared defaults (a separated contact is
-// forgotten, as the adapter's batch loop did), and the geometry of the rows
+// of rows that left the range back to its declared defaults (a separated
+// contact is forgotten, as the adapter's batch loop did; a row that stays
+// out of range keeps them), and the geometry of the rows
 // in range packed into d. True when an active contact overlaps beyond its
 // model's max_overlap.
-bool World::pack_ball_rows(const ModelInstance& inst, ContactSet& s, std::size_t begin, std::size_t end,
+bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                            DenseBatch& d) {
+    ContactSet& s = *sets_[si];
+    std::uint8_t* live = live_[si].data();
     const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
     const int persist = inst.desc->persist_slot;
     const std::size_t stride = std::size_t(inst.stride);
@@ -43,7 +52,8 @@ bool World::pack_ball_rows(const ModelInstance& inst, ContactSet& s, std::size_t
         d.row[n_active] = std::uint32_t(k);
         idle[n_idle] = std::uint32_t(k);
         n_active += active;
-        n_idle += !active;
+        n_idle += !active & (live[k] != 0);  // just left the range: history to forget
+        live[k] = active;
     }
     for (std::size_t r = 0; r < n_idle; ++r)
         for (std::size_t h = 0; h < stride; ++h) s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
@@ -69,11 +79,14 @@ bool World::pack_ball_rows(const ModelInstance& inst, ContactSet& s, std::size_t
         put(d.rel_angular_velocity, a, B.angular_velocity[j] - B.angular_velocity[i]);
         d.radius1[a] = ri;
         d.radius2[a] = rj;
-        d.mass1[a] = s.mass1[k];
-        d.mass2[a] = s.mass2[k];
-        d.eff_mass[a] = s.eff_mass[k];
-        d.eff_radius[a] = s.eff_radius[k];
-        std::copy_n(s.history.data() + k * stride, stride, d.history.data() + a * stride);
+        // masses from the bodies (in cache) rather than the set's columns,
+        // with fill_pair_constants()'s arithmetic
+        const double mi = B.mass[i], mj = B.mass[j];
+        d.mass1[a] = mi;
+        d.mass2[a] = mj;
+        d.eff_mass[a] = mi * mj / (mi + mj);
+        d.eff_radius[a] = ri * rj / (ri + rj);
+        for (std::size_t h = 0; h < stride; ++h) d.history[a * stride + h] = s.history[k * stride + h];  // a loop, not a memmove call, for a few doubles
         exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
     }
     d.count = std::uint32_t(n_active);
@@ -139,15 +152,10 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     double strain = 0, slip = 0, dashpot = 0, broken = 0;
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
-        std::copy_n(d.history.data() + a * stride, stride, s.history.data() + k * stride);
+        for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = d.history[a * stride + h];
         copy3(s.force.data(), k, d.force, a);
-        copy3(s.moment1.data(), k, d.moment1, a);
-        copy3(s.moment2.data(), k, d.moment2, a);
         copy3(s.point.data(), k, d.point, a);
         copy3(s.normal.data(), k, d.normal, a);
-        s.k_t[k] = d.k_t[a];
-        s.k_r[k] = d.k_r[a];
-        s.dt_limit[k] = d.dt_limit[a];
         strain += d.strain[a];
         slip += d.slip[a];
         dashpot += d.dashpot[a];
@@ -162,6 +170,36 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     }
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = 0;
+    HeldOutputs& held = held_[si][begin / kContactBatch];
+    const std::size_t end = std::min(s.size(), begin + kContactBatch);
+    write_back(s.moment1.data(), 3, d.moment1, d, begin, end, held, 0);
+    write_back(s.moment2.data(), 3, d.moment2, d, begin, end, held, 1);
+    write_back(s.k_t.data(), 1, d.k_t, d, begin, end, held, 2);
+    write_back(s.k_r.data(), 1, d.k_r, d, begin, end, held, 3);
+    write_back(s.dt_limit.data(), 1, d.dt_limit, d, begin, end, held, 4);
+}
+
+// One output column (`width` doubles per row) back from the packed rows of
+// batch [begin, end). Most models give many outputs one value for every
+// contact (no pure moments, a constant stiffness, no step limit): then the
+// whole batch is filled with it once, and later steps that give the same
+// value write nothing. Values are compared bit for bit.
+void World::write_back(double* col, std::size_t width, const double* dense, const DenseBatch& d, std::size_t begin,
+                       std::size_t end, HeldOutputs& held, int which) {
+    const std::size_t n = width * d.count;
+    if (n == 0) return;  // no row to report: what the column holds is not read
+    const double u = dense[0];
+    bool same = true;
+    for (std::size_t i = 1; i < n; ++i) same &= bits(dense[i]) == bits(u);
+    if (same && held.uniform[which] && bits(held.value[which]) == bits(u)) return;
+    held.uniform[which] = same;
+    held.value[which] = u;
+    if (same) {
+        std::fill(col + width * begin, col + width * end, u);
+        return;
+    }
+    for (std::size_t a = 0; a < d.count; ++a)
+        for (std::size_t c = 0; c < width; ++c) col[width * d.row[a] + c] = dense[width * a + c];
 }
 
 } // namespace plab

@@ -281,6 +281,14 @@ void World::build_chunks() {
         set_chunks_.push_back(std::uint32_t(chunks_.size()));
     }
     partial_fm_.assign(offset, 0.0);
+    // the columns were just made or loaded: nothing is known to be uniform,
+    // and any row may hold history
+    held_.resize(sets_.size());
+    live_.resize(sets_.size());
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
+        held_[si].assign((sets_[si]->size() + kContactBatch - 1) / kContactBatch, HeldOutputs{});
+        live_[si].assign(sets_[si]->size(), 1);
+    }
 }
 
 } // namespace plab

@@ -277,7 +277,7 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
             const std::size_t m = std::min(kContactBatch, ch.end - o);
             if (dense) {
                 DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
-                exceeded |= pack_ball_rows(inst, s, o, o + m, d);
+                exceeded |= pack_ball_rows(inst, si, o, o + m, d);
                 if (call_model_dense(inst, d, dim, last_dt, read_cols) != 0) failed = 1;
                 unpack_rows(si, inst, d, o, ch);
                 continue;

@@ -222,6 +222,16 @@ private:
     std::vector<Chunk> chunks_;
     std::vector<std::uint32_t> set_chunks_;  // chunks of set si: [set_chunks_[si], set_chunks_[si + 1])
     std::vector<double> partial_fm_;
+    // Per set and batch, for the outputs moment1, moment2, k_t, k_r,
+    // dt_limit: the value every row of the batch holds in the set's column,
+    // when they all hold the same (zero moments, a constant stiffness). The
+    // dense path then skips writing an unchanged output back (unpack_rows).
+    struct HeldOutputs { double value[5]; std::uint8_t uniform[5]; };
+    std::vector<std::vector<HeldOutputs>> held_;
+    // per set and row: the row may hold history other than the defaults (it
+    // was active at the last force pass, or came with its history from the
+    // last list): only such rows need their history reset when out of range
+    std::vector<std::vector<std::uint8_t>> live_;
     void build_chunks();
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
@@ -288,9 +298,12 @@ private:
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
-    bool pack_ball_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end, DenseBatch& d);
+    bool pack_ball_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end,
+                        DenseBatch& d);
     void unpack_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
                      const Chunk& chunk);
+    void write_back(double* column, std::size_t width, const double* dense, const DenseBatch& d, std::size_t begin,
+                    std::size_t end, HeldOutputs& held, int which);
     int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
                    const double* const* read_cols, bool clear);
     [[noreturn]] void model_failed(const ModelInstance& inst) const;
