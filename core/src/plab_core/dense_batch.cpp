@@ -46,9 +46,10 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         const double gap = dist - s.radius1[k] - s.radius2[k];
         const bool bonded = persist >= 0 && s.history[k * stride + persist] > 0;
         const bool active = bonded || (by_distance ? dist <= inst.range : gap <= inst.range);
-        s.gap[k] = gap;
-        s.distance[k] = dist;
+        s.gap[k] = gap;  // (the centre distance of a ball–ball row is read by the model only)
         s.active[k] = active;
+        d.gap[n_active] = gap;
+        d.distance[n_active] = dist;
         d.row[n_active] = std::uint32_t(k);
         idle[n_idle] = std::uint32_t(k);
         n_active += active;
@@ -64,15 +65,13 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         const Vec& xi = B.position[i];
         const double ri = s.radius1[k], rj = s.radius2[k];
         const Vec dx = B.position[j] - xi;
-        const double dist = s.distance[k], gap = s.gap[k];
+        const double dist = d.distance[a], gap = d.gap[a];
         const Vec normal = dist > 0 ? Vec(dx / dist) : Vec::UnitX();
         const Vec point = xi + normal * (ri + 0.5 * gap);  // middle of the overlap
         const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(point - B.position[j]);
         const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
         d.end1[a] = i;
         d.end2[a] = j;
-        d.gap[a] = gap;
-        d.distance[a] = dist;
         put(d.normal, a, normal);
         put(d.point, a, point);
         put(d.rel_velocity, a, vj - vi);

@@ -400,11 +400,50 @@ void World::sum_stiffness() const {
     stiffness_valid_ = true;
 }
 
+// Body i's force and moment after the contact sums: field accumulations,
+// local and viscous damping (their work added to local_work), the 2D
+// projection; true when its state may be non-finite.
+bool World::finish_body_force(std::size_t i, double& local_work) {
+    constexpr std::uint32_t end2_bit = 1u << 31;
+    Vec f = bodies.force[i], m = bodies.moment[i];
+    if (any_accumulation_)  // fields of rates-stage models are summed after that stage
+        for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
+            const Entry en = entries_[e];
+            const ContactSet& s = *sets_[en.set];
+            const std::uint32_t k = en.row & ~end2_bit;
+            const ModelInstance& owner = *set_owner_[en.set];
+            if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
+        }
+    const double alpha = bodies.local_damping[i];
+    if (alpha > 0) {  // PFC local damping: -alpha |F| sign(v), per component
+        for (int c = 0; c < 3; ++c) {
+            const double v = bodies.velocity[i][c], w = bodies.angular_velocity[i][c];
+            const double fd = -alpha * std::fabs(f[c]) * ((v > 0) - (v < 0));
+            const double md = -alpha * std::fabs(m[c]) * ((w > 0) - (w < 0));
+            f[c] += fd;
+            m[c] += md;
+            local_work -= (fd * v + md * w) * last_dt;
+        }
+    }
+    const double c = bodies.viscous_damping[i];
+    if (c > 0) {  // mass-proportional: every mode decays at the same rate c/2 (quasi-static solves)
+        const Vec fd = -c * bodies.mass[i] * bodies.velocity[i];
+        const Vec md = -c * bodies.inertia[i] * bodies.angular_velocity[i];
+        f += fd;
+        m += md;
+        local_work -= (fd.dot(bodies.velocity[i]) + md.dot(bodies.angular_velocity[i])) * last_dt;
+    }
+    if (dim == 2) { f.z() = 0; m.x() = 0; m.y() = 0; }
+    bodies.force[i] = f;
+    bodies.moment[i] = m;
+    // NaN or Inf anywhere makes the sum non-finite; check_finite() finds which
+    return !std::isfinite(f.sum() + m.sum() + bodies.position[i].sum() + bodies.velocity[i].sum());
+}
+
 // Sum contact forces and moments onto bodies (plus gravity, applied loads and
-// local damping), each body adding its own slots in a fixed order.
+// local damping), each body adding the chunks' partial sums in chunk order.
 bool World::reduce() {
     const std::size_t n = bodies.size();
-    constexpr std::uint32_t end2_bit = 1u << 31;
     for (auto& inst : instances_)
         if (!inst->desc->rates_stage)
             for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
@@ -412,50 +451,29 @@ bool World::reduce() {
         for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_chunks(si);
     double local_work = 0;
     bool non_finite = false;
-    const std::size_t n_chunks = chunks_.size();
+    // blocks of bodies: the contact sums are added chunk by chunk (in chunk
+    // order, the same for any thread count) over the block, then each body
+    // of the block gets its damping and checks
+    constexpr std::size_t block = 1024;
+    const std::size_t n_blocks = (n + block - 1) / block;
 #pragma omp parallel for schedule(static) reduction(+ : local_work) reduction(| : non_finite) if (n >= parallel_min)
-    for (std::size_t i = 0; i < n; ++i) {
-        Vec f = bodies.mass[i] * gravity + bodies.applied_force[i];
-        Vec m = bodies.applied_moment[i];
-        for (std::size_t c = 0; c < n_chunks; ++c) {  // in chunk order, for any thread count
-            const Chunk& ch = chunks_[c];
-            if (std::int32_t(i) < ch.lo || std::int32_t(i) > ch.hi) continue;
-            const double* p = partial_fm_.data() + ch.offset + kSlotDoubles * (i - std::size_t(ch.lo));
-            f += Vec(p);
-            m += Vec(p + 3);
+    for (std::size_t b = 0; b < n_blocks; ++b) {
+        const std::size_t i0 = b * block, i1 = std::min(n, i0 + block);
+        for (std::size_t i = i0; i < i1; ++i) {
+            bodies.force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
+            bodies.moment[i] = bodies.applied_moment[i];
         }
-        if (any_accumulation_)  // fields of rates-stage models are summed after that stage
-            for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-                const Entry en = entries_[e];
-                const ContactSet& s = *sets_[en.set];
-                const std::uint32_t k = en.row & ~end2_bit;
-                const ModelInstance& owner = *set_owner_[en.set];
-                if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
-            }
-        const double alpha = bodies.local_damping[i];
-        if (alpha > 0) {  // PFC local damping: -alpha |F| sign(v), per component
-            for (int c = 0; c < 3; ++c) {
-                const double v = bodies.velocity[i][c], w = bodies.angular_velocity[i][c];
-                const double fd = -alpha * std::fabs(f[c]) * ((v > 0) - (v < 0));
-                const double md = -alpha * std::fabs(m[c]) * ((w > 0) - (w < 0));
-                f[c] += fd;
-                m[c] += md;
-                local_work -= (fd * v + md * w) * last_dt;
+        for (const Chunk& ch : chunks_) {
+            const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
+            const double* p = partial_fm_.data() + ch.offset;
+            for (std::size_t i = c0; i < c1; ++i) {
+                const double* pi = p + kSlotDoubles * (i - std::size_t(ch.lo));
+                bodies.force[i] += Vec(pi);
+                bodies.moment[i] += Vec(pi + 3);
             }
         }
-        const double c = bodies.viscous_damping[i];
-        if (c > 0) {  // mass-proportional: every mode decays at the same rate c/2 (quasi-static solves)
-            const Vec fd = -c * bodies.mass[i] * bodies.velocity[i];
-            const Vec md = -c * bodies.inertia[i] * bodies.angular_velocity[i];
-            f += fd;
-            m += md;
-            local_work -= (fd.dot(bodies.velocity[i]) + md.dot(bodies.angular_velocity[i])) * last_dt;
-        }
-        if (dim == 2) { f.z() = 0; m.x() = 0; m.y() = 0; }
-        bodies.force[i] = f;
-        bodies.moment[i] = m;
-        // NaN or Inf anywhere makes the sum non-finite; check_finite() finds which
-        non_finite |= !std::isfinite(f.sum() + m.sum() + bodies.position[i].sum() + bodies.velocity[i].sum());
+        for (std::size_t i = i0; i < i1; ++i)
+            non_finite |= finish_body_force(i, local_work);
     }
     energies.local_damping += local_work;
     stiffness_valid_ = false;

@@ -26,7 +26,11 @@ struct ContactSet {
     std::vector<std::int32_t> end1, end2;
     std::vector<BodyId> key1, key2;
     std::vector<double> history;
-    // geometry (inputs of the batch)
+    // geometry (inputs of the batch). Ball–ball rows of models that take the
+    // dense path (force_sweep) keep active, gap, normal and point up to date
+    // for every reader; their distance, rel_velocity, rel_angular_velocity,
+    // strain, slip, dashpot and break_energy columns are not written (the
+    // model gets them packed, dense_batch.hpp) and hold stale values.
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
     std::vector<double> radius1, radius2, mass1, mass2, eff_mass, eff_radius;
@@ -316,6 +320,7 @@ private:
     void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
                            std::vector<std::array<std::int32_t, 2>>& pairs) const;
     void force_pass();
+    bool finish_body_force(std::size_t body, double& local_work);
     bool reduce();  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
     void kick(double half_dt);
