@@ -34,7 +34,8 @@ SPH_SCENE = "sph_double_dam_break"
 
 
 def run_measured(cmd, env, capture):
-    """Runs cmd; returns (stdout text or None, peak resident memory in MB)."""
+    """Runs cmd; returns (stdout text or None, peak resident memory in MB, CPU seconds user + system,
+    its reaped children's included: both MPI ranks under mpirun)."""
     p = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE if capture else subprocess.DEVNULL,
                          stderr=subprocess.DEVNULL, text=True)
     text = p.stdout.read() if capture else None
@@ -42,7 +43,7 @@ def run_measured(cmd, env, capture):
     code = os.waitstatus_to_exitcode(status)
     if code != 0:
         raise subprocess.CalledProcessError(code, cmd)
-    return text, usage.ru_maxrss / 1024.0  # Linux: kB
+    return text, usage.ru_maxrss / 1024.0, usage.ru_utime + usage.ru_stime  # Linux: kB
 
 
 def run_plab(plab, scene, threads, steps, work):
@@ -57,14 +58,14 @@ def run_plab(plab, scene, threads, steps, work):
     json.dump(sc, open(path, "w"))
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     env.setdefault("OMP_WAIT_POLICY", "PASSIVE")
-    _, rss = run_measured([plab, "run", path, "--out", out], env, False)
+    _, rss, cpu = run_measured([plab, "run", path, "--out", out], env, False)
     s = json.load(open(os.path.join(out, "summary.json")))
     if sph:
         rows = open(os.path.join(out, "history.csv")).read().split()
         return (s["particle_steps_per_second"], float(rows[-1].split(",")[-1]), s["energies"]["kinetic"],
-                s["state_hash"], rss)
+                s["state_hash"], rss, cpu)
     pairs = sum(m["active_contacts"] for m in s["models"][:1])  # first rule: grains-grains
-    return s["particle_steps_per_second"], pairs, s["energies"]["kinetic"], s["state_hash"], rss
+    return s["particle_steps_per_second"], pairs, s["energies"]["kinetic"], s["state_hash"], rss, cpu
 
 
 def run_peer(exe, infile, dim, data, threads, steps):
@@ -75,11 +76,11 @@ def run_peer(exe, infile, dim, data, threads, steps):
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "mpi_yield_when_idle", "1",
                "-np", str(threads)] + cmd
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    text, rss = run_measured(cmd, env, True)
+    text, rss, cpu = run_measured(cmd, env, True)
     loop = float(re.search(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", text).group(1))
     m = re.search(r"PEER_RESULT contacts ([0-9.eE+-]+) kinetic ([0-9.eE+-]+)", text)
     atoms = int(re.search(r"for \d+ steps with (\d+) atoms", text).group(1))
-    return atoms * steps / loop, float(m.group(1)), float(m.group(2)), None, rss
+    return atoms * steps / loop, float(m.group(1)), float(m.group(2)), None, rss, cpu
 
 
 def main():
@@ -118,7 +119,7 @@ def main():
                     results.setdefault((scene, t, code), []).append(r)
                     second = f"fluid mean height {r[1]:.5g} m" if scene == "sph" else f"{r[1]:.0f} pair contacts"
                     print(f"  rep {rep + 1} {scene} {code} x{t}: {r[0] / 1e6:.2f} M particle-steps/s, "
-                          f"{second}, kinetic {r[2]:.4g} J, peak {r[4]:.0f} MB" + (f", hash {r[3]}" if r[3] else "")
+                          f"{second}, kinetic {r[2]:.4g} J, peak {r[4]:.0f} MB, CPU {r[5]:.1f} s" + (f", hash {r[3]}" if r[3] else "")
                           + f", load {os.getloadavg()[0]:.2f}", flush=True)
     print(f"load average at end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     print(f"\nmedian of {a.reps} interleaved runs, {a.steps} steps (sph: {a.sph_steps}), "
@@ -145,6 +146,15 @@ def main():
                 ok = abs(dh) <= 0.03 and abs(dk) <= 0.03
                 print(f"sph x{t}: plab vs LIGGGHTS: fluid mean height {100 * dh:+.2f} %, kinetic energy "
                       f"{100 * dk:+.2f} % -> {'physics agrees (3 %)' if ok else 'PHYSICS DIFFERS'}")
+    # On a shared machine wall-clock loop times measure the load as much as the
+    # codes; CPU time (whole process, set-up included) is the steadier figure.
+    print("\nmedian CPU seconds of the whole run (user + system, all threads/ranks), and peer/plab")
+    for scene in a.scenes.split(","):
+        for t in threads:
+            have = [c for c in codes if (scene, t, c) in results]
+            cpu = {c: statistics.median(x[5] for x in results[(scene, t, c)]) for c in have}
+            ratios = [f"{c} {cpu[c]:.1f} s ({cpu[c] / cpu['plab']:.2f}x)" for c in have if c != "plab" and "plab" in cpu]
+            print(f"{scene} x{t}: " + (f"plab {cpu['plab']:.1f} s; " if "plab" in cpu else "") + "; ".join(ratios))
     if "plab" in codes and len(threads) > 1:
         for scene in a.scenes.split(","):
             hashes = {t: results[(scene, t, "plab")][-1][3] for t in threads}

@@ -27,7 +27,12 @@
  *      plug-ins load unchanged.
  *
  * Contact models are called once per *batch* of contacts over host-owned
- * structure-of-arrays data (plab_contact_batch). Passes are called once per
+ * structure-of-arrays data (plab_contact_batch). A batch may hold only
+ * active rows: the host packs the rows in contact for ball–ball contacts of
+ * models that accumulate no body fields, and then itself resets the history
+ * of a contact that leaves the activity range to the declared defaults (what
+ * the C++ adapter's batch loop does with an inactive row). A model must not
+ * rely on seeing its inactive rows. Passes are called once per
  * cycle phase over all bodies (plab_pass_view).
  *
  * Most authors never touch this file: contact_model.hpp and pass.hpp generate

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace plab {
@@ -241,25 +242,53 @@ void World::build_entries() {
     entries_.resize(entry_start_[n]);
     std::vector<std::uint32_t> fill(entry_start_.begin(), entry_start_.end() - 1);
     constexpr std::uint32_t end2_bit = 1u << 31;
-    slot1_.resize(sets_.size());
-    slot2_.resize(sets_.size());
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         const ContactSet* s = sets_[si];
-        slot1_[si].resize(s->size());
-        slot2_[si].resize(s->with_wall ? 0 : s->size());
         for (std::uint32_t k = 0; k < s->size(); ++k) {
-            slot1_[si][k] = fill[s->end1[k]];
             entries_[fill[s->end1[k]]++] = {si, k};
-            if (s->with_wall) continue;
-            slot2_[si][k] = fill[s->end2[k]];
-            entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
+            if (!s->with_wall) entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
         }
     }
-    slot_fm_.assign(kSlotDoubles * entries_.size(), 0.0);
-    slot_live_.resize(sets_.size());
-    for (std::uint32_t si = 0; si < sets_.size(); ++si) slot_live_[si].assign(sets_[si]->size(), 0);
+    build_chunks();
     any_accumulation_ = false;
     for (auto& inst : instances_) any_accumulation_ |= !inst->desc->rates_stage && !inst->fields_accumulated.empty();
+}
+
+// Chunks of the deterministic reduction (world.hpp): about eight batches
+// each, so that two threads share a set evenly, at most 64 per set.
+void World::build_chunks() {
+    constexpr std::size_t batches_per_chunk = 8, max_chunks = 64;
+    chunks_.clear();
+    set_chunks_.assign(1, 0);
+    std::size_t offset = 0;
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
+        const ContactSet& s = *sets_[si];
+        const std::size_t n_batches = (s.size() + kContactBatch - 1) / kContactBatch;
+        const std::size_t n_chunks = std::min(max_chunks, (n_batches + batches_per_chunk - 1) / batches_per_chunk);
+        for (std::size_t c = 0; c < n_chunks; ++c) {
+            Chunk ch{si, kContactBatch * (n_batches * c / n_chunks), std::min(s.size(), kContactBatch * (n_batches * (c + 1) / n_chunks)),
+                     std::numeric_limits<std::int32_t>::max(), -1, offset};
+            for (std::size_t k = ch.begin; k < ch.end; ++k) {
+                ch.lo = std::min(ch.lo, s.end1[k]);
+                ch.hi = std::max(ch.hi, s.end1[k]);
+                if (s.with_wall) continue;
+                ch.lo = std::min(ch.lo, s.end2[k]);
+                ch.hi = std::max(ch.hi, s.end2[k]);
+            }
+            if (ch.hi >= ch.lo) offset += kSlotDoubles * std::size_t(ch.hi - ch.lo + 1);
+            chunks_.push_back(ch);
+        }
+        set_chunks_.push_back(std::uint32_t(chunks_.size()));
+    }
+    partial_fm_.assign(offset, 0.0);
+    // the columns were just made or loaded: nothing is known to be uniform,
+    // and any row may hold history
+    held_.resize(sets_.size());
+    live_.resize(sets_.size());
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
+        held_[si].assign((sets_[si]->size() + kContactBatch - 1) / kContactBatch, HeldOutputs{});
+        live_[si].assign(sets_[si]->size(), 1);
+    }
 }
 
 } // namespace plab

@@ -3,6 +3,7 @@
 // per batch of contacts, then sums forces onto bodies in a fixed order.
 #include "world.hpp"
 
+#include "dense_batch.hpp"
 #include "error.hpp"
 
 #include <algorithm>
@@ -247,11 +248,12 @@ void World::model_failed(const ModelInstance& inst) const {
                    std::to_string(step_count));
 }
 
-// The force pass of one set in a single sweep over batches of rows (models
-// without a rates stage): geometry (ball–ball sets; a wall set has it done
-// before, because resolve_wall_features needs a ball's rows together), the
-// model, and the scatter to the bodies' slots, while the batch's rows are in
-// cache. Batches are fixed row ranges, so every sum is thread-count free.
+// The force pass of one set in a single sweep over its chunks (world.hpp),
+// batch by batch: geometry (ball–ball sets; a wall set has it done before,
+// because resolve_wall_features needs a ball's rows together), the model,
+// and the rows' forces added to the chunk's partial sums while the batch is
+// in cache. Batches and chunks are fixed row ranges, so every sum is
+// thread-count free.
 void World::force_sweep(std::uint32_t si, bool with_geometry) {
     ContactSet& s = *sets_[si];
     ModelInstance& inst = *instances_[si / 2];
@@ -261,15 +263,29 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     const double* read_cols[16];
     if (inst.fields_read.size() > 16) throw PluginError("contact model '" + inst.model + "' reads more than 16 body fields");
     for (std::size_t f = 0; f < inst.fields_read.size(); ++f) read_cols[f] = fields_[inst.fields_read[f]].data();
-    const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
+    // ball–ball rows go to the model packed (dense_batch.hpp), unless it
+    // accumulates body fields (those sums walk the full columns, reduce())
+    const bool dense = with_geometry && inst.fields_accumulated.empty();
+    const std::uint32_t c0 = set_chunks_[si], c1 = set_chunks_[si + 1];
     int failed = 0;
     bool exceeded = false;
 #pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)
-    for (std::size_t b = 0; b < n_batches; ++b) {
-        const std::size_t o = b * kContactBatch, m = std::min(kContactBatch, n - o);
-        if (with_geometry) exceeded |= geometry_rows(inst, s, o, o + m);
-        if (call_model(inst, s, o, m, PLAB_STAGE_FORCES, read_cols, false) != 0) failed = 1;
-        scatter_rows(si, o, o + m);
+    for (std::uint32_t c = c0; c < c1; ++c) {
+        const Chunk& ch = chunks_[c];
+        if (ch.hi >= ch.lo) std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * std::size_t(ch.hi - ch.lo + 1), 0.0);
+        for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
+            const std::size_t m = std::min(kContactBatch, ch.end - o);
+            if (dense) {
+                DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
+                exceeded |= pack_ball_rows(inst, si, o, o + m, d);
+                if (call_model_dense(inst, d, dim, last_dt, read_cols) != 0) failed = 1;
+                unpack_rows(si, inst, d, o, ch);
+                continue;
+            }
+            if (with_geometry) exceeded |= geometry_rows(inst, s, o, o + m);
+            if (call_model(inst, s, o, m, PLAB_STAGE_FORCES, read_cols, false) != 0) failed = 1;
+            scatter_rows(si, o, o + m, ch);
+        }
     }
     if (with_geometry) s.overlap_exceeded = exceeded;
     if (failed) model_failed(inst);
@@ -303,65 +319,56 @@ void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uin
         fields_[owner.fields_accumulated[a]][i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
 }
 
-// What each contact row adds to its two bodies (force and moment), written
-// to the bodies' CSR slots: walking the rows in order keeps the contact data
-// in cache, and the body loop in reduce() then reads its slots contiguously.
-// An inactive row adds zeros, which leaves every sum bit-identical to
-// skipping it; its slots are zeroed once, when it stops being active. The
+// What each active row of [begin, end) adds to its two bodies (force and
+// moment), summed in row order into the partial sums of its chunk. The
 // batch's energy sums are taken here too (sum_energies() adds the batches
 // in order, so the totals do not depend on the thread count).
-void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end) {
+void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const auto& B = bodies;
-    std::uint8_t* live = slot_live_[si].data();
-    const std::uint32_t* slot1 = slot1_[si].data();
-    const std::uint32_t* slot2 = slot2_[si].data();
-    double* fm = slot_fm_.data();
+    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
+    const std::int32_t lo = ch.lo;
     double strain = 0, slip = 0, dashpot = 0, broken = 0, wall_power = 0;
-    // first the rows that just stopped being active (rare: a predictable
-    // branch), listing the active ones without a branch per row
+    // the active rows, listed without a branch per row
     std::uint32_t rows[kContactBatch];
     std::size_t n_active = 0;
     for (std::size_t k = begin; k < end; ++k) {
-        const bool active = s.active[k] != 0;
-        if (!active && live[k]) {
-            std::fill_n(fm + kSlotDoubles * slot1[k], kSlotDoubles, 0.0);
-            if (!s.with_wall) std::fill_n(fm + kSlotDoubles * slot2[k], kSlotDoubles, 0.0);
-        }
-        live[k] = active;
         rows[n_active] = std::uint32_t(k);
-        n_active += active;
+        n_active += s.active[k] != 0;
     }
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = rows[a];
-        double* f1m1 = fm + kSlotDoubles * slot1[k];
+        double* f1m1 = fm + kSlotDoubles * std::size_t(s.end1[k] - lo);
         strain += s.strain[k];
         slip += s.slip[k];
         dashpot += s.dashpot[k];
         broken += s.break_energy[k];
         const Vec f2(&s.force[3 * k]), point(&s.point[3 * k]);
         const Vec m1 = (point - B.position[s.end1[k]]).cross(-f2) + Vec(&s.moment1[3 * k]);
-        for (int c = 0; c < 3; ++c) { f1m1[c] = -f2[c]; f1m1[3 + c] = m1[c]; }
+        for (int c = 0; c < 3; ++c) { f1m1[c] -= f2[c]; f1m1[3 + c] += m1[c]; }
         if (s.with_wall) {
             // power of the ball on the wall: -(force on the wall) . v_wall(point)
             wall_power -= f2.dot(walls.velocity_at(walls.facets[s.end2[k]].wall, point));
             continue;
         }
-        double* f2m2 = fm + kSlotDoubles * slot2[k];
+        double* f2m2 = fm + kSlotDoubles * std::size_t(s.end2[k] - lo);
         const Vec m2 = (point - B.position[s.end2[k]]).cross(f2) + Vec(&s.moment2[3 * k]);
-        for (int c = 0; c < 3; ++c) { f2m2[c] = f2[c]; f2m2[3 + c] = m2[c]; }
+        for (int c = 0; c < 3; ++c) { f2m2[c] += f2[c]; f2m2[3 + c] += m2[c]; }
     }
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = wall_power;
 }
 
-void World::scatter_to_slots(std::uint32_t si) {
+void World::scatter_to_chunks(std::uint32_t si) {
     const std::size_t n = sets_[si]->size();
-    const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
-    sets_[si]->batch_energy.assign(kBatchEnergies * n_batches, 0.0);
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
-    for (std::size_t b = 0; b < n_batches; ++b)
-        scatter_rows(si, b * kContactBatch, std::min(n, (b + 1) * kContactBatch));
+    sets_[si]->batch_energy.assign(kBatchEnergies * ((n + kContactBatch - 1) / kContactBatch), 0.0);
+#pragma omp parallel for schedule(dynamic) if (n >= parallel_min)
+    for (std::uint32_t c = set_chunks_[si]; c < set_chunks_[si + 1]; ++c) {
+        const Chunk& ch = chunks_[c];
+        if (ch.hi >= ch.lo) std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * std::size_t(ch.hi - ch.lo + 1), 0.0);
+        for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch)
+            scatter_rows(si, o, std::min(ch.end, o + kContactBatch), ch);
+    }
 }
 
 // Per-body stiffness sums for the stable timestep (PFC: sqrt(m / sum k_t),
@@ -393,58 +400,80 @@ void World::sum_stiffness() const {
     stiffness_valid_ = true;
 }
 
+// Body i's force and moment after the contact sums: field accumulations,
+// local and viscous damping (their work added to local_work), the 2D
+// projection; true when its state may be non-finite.
+bool World::finish_body_force(std::size_t i, double& local_work) {
+    constexpr std::uint32_t end2_bit = 1u << 31;
+    Vec f = bodies.force[i], m = bodies.moment[i];
+    if (any_accumulation_)  // fields of rates-stage models are summed after that stage
+        for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
+            const Entry en = entries_[e];
+            const ContactSet& s = *sets_[en.set];
+            const std::uint32_t k = en.row & ~end2_bit;
+            const ModelInstance& owner = *set_owner_[en.set];
+            if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
+        }
+    const double alpha = bodies.local_damping[i];
+    if (alpha > 0) {  // PFC local damping: -alpha |F| sign(v), per component
+        for (int c = 0; c < 3; ++c) {
+            const double v = bodies.velocity[i][c], w = bodies.angular_velocity[i][c];
+            const double fd = -alpha * std::fabs(f[c]) * ((v > 0) - (v < 0));
+            const double md = -alpha * std::fabs(m[c]) * ((w > 0) - (w < 0));
+            f[c] += fd;
+            m[c] += md;
+            local_work -= (fd * v + md * w) * last_dt;
+        }
+    }
+    const double c = bodies.viscous_damping[i];
+    if (c > 0) {  // mass-proportional: every mode decays at the same rate c/2 (quasi-static solves)
+        const Vec fd = -c * bodies.mass[i] * bodies.velocity[i];
+        const Vec md = -c * bodies.inertia[i] * bodies.angular_velocity[i];
+        f += fd;
+        m += md;
+        local_work -= (fd.dot(bodies.velocity[i]) + md.dot(bodies.angular_velocity[i])) * last_dt;
+    }
+    if (dim == 2) { f.z() = 0; m.x() = 0; m.y() = 0; }
+    bodies.force[i] = f;
+    bodies.moment[i] = m;
+    // NaN or Inf anywhere makes the sum non-finite; check_finite() finds which
+    return !std::isfinite(f.sum() + m.sum() + bodies.position[i].sum() + bodies.velocity[i].sum());
+}
+
 // Sum contact forces and moments onto bodies (plus gravity, applied loads and
-// local damping), each body adding its own slots in a fixed order.
+// local damping), each body adding the chunks' partial sums in chunk order.
 bool World::reduce() {
     const std::size_t n = bodies.size();
-    constexpr std::uint32_t end2_bit = 1u << 31;
     for (auto& inst : instances_)
         if (!inst->desc->rates_stage)
             for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
-    if (!swept_)  // force_sweep() scattered the rows already
-        for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_slots(si);
+    if (!swept_)  // force_sweep() summed the rows already
+        for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_chunks(si);
     double local_work = 0;
     bool non_finite = false;
+    // blocks of bodies: the contact sums are added chunk by chunk (in chunk
+    // order, the same for any thread count) over the block, then each body
+    // of the block gets its damping and checks
+    constexpr std::size_t block = 1024;
+    const std::size_t n_blocks = (n + block - 1) / block;
 #pragma omp parallel for schedule(static) reduction(+ : local_work) reduction(| : non_finite) if (n >= parallel_min)
-    for (std::size_t i = 0; i < n; ++i) {
-        Vec f = bodies.mass[i] * gravity + bodies.applied_force[i];
-        Vec m = bodies.applied_moment[i];
-        for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-            f += Vec(&slot_fm_[kSlotDoubles * e]);
-            m += Vec(&slot_fm_[kSlotDoubles * e + 3]);
+    for (std::size_t b = 0; b < n_blocks; ++b) {
+        const std::size_t i0 = b * block, i1 = std::min(n, i0 + block);
+        for (std::size_t i = i0; i < i1; ++i) {
+            bodies.force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
+            bodies.moment[i] = bodies.applied_moment[i];
         }
-        if (any_accumulation_)  // fields of rates-stage models are summed after that stage
-            for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-                const Entry en = entries_[e];
-                const ContactSet& s = *sets_[en.set];
-                const std::uint32_t k = en.row & ~end2_bit;
-                const ModelInstance& owner = *set_owner_[en.set];
-                if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
-            }
-        const double alpha = bodies.local_damping[i];
-        if (alpha > 0) {  // PFC local damping: -alpha |F| sign(v), per component
-            for (int c = 0; c < 3; ++c) {
-                const double v = bodies.velocity[i][c], w = bodies.angular_velocity[i][c];
-                const double fd = -alpha * std::fabs(f[c]) * ((v > 0) - (v < 0));
-                const double md = -alpha * std::fabs(m[c]) * ((w > 0) - (w < 0));
-                f[c] += fd;
-                m[c] += md;
-                local_work -= (fd * v + md * w) * last_dt;
+        for (const Chunk& ch : chunks_) {
+            const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
+            const double* p = partial_fm_.data() + ch.offset;
+            for (std::size_t i = c0; i < c1; ++i) {
+                const double* pi = p + kSlotDoubles * (i - std::size_t(ch.lo));
+                bodies.force[i] += Vec(pi);
+                bodies.moment[i] += Vec(pi + 3);
             }
         }
-        const double c = bodies.viscous_damping[i];
-        if (c > 0) {  // mass-proportional: every mode decays at the same rate c/2 (quasi-static solves)
-            const Vec fd = -c * bodies.mass[i] * bodies.velocity[i];
-            const Vec md = -c * bodies.inertia[i] * bodies.angular_velocity[i];
-            f += fd;
-            m += md;
-            local_work -= (fd.dot(bodies.velocity[i]) + md.dot(bodies.angular_velocity[i])) * last_dt;
-        }
-        if (dim == 2) { f.z() = 0; m.x() = 0; m.y() = 0; }
-        bodies.force[i] = f;
-        bodies.moment[i] = m;
-        // NaN or Inf anywhere makes the sum non-finite; check_finite() finds which
-        non_finite |= !std::isfinite(f.sum() + m.sum() + bodies.position[i].sum() + bodies.velocity[i].sum());
+        for (std::size_t i = i0; i < i1; ++i)
+            non_finite |= finish_body_force(i, local_work);
     }
     energies.local_damping += local_work;
     stiffness_valid_ = false;

@@ -26,7 +26,11 @@ struct ContactSet {
     std::vector<std::int32_t> end1, end2;
     std::vector<BodyId> key1, key2;
     std::vector<double> history;
-    // geometry (inputs of the batch)
+    // geometry (inputs of the batch). Ball–ball rows of models that take the
+    // dense path (force_sweep) keep active, gap, normal and point up to date
+    // for every reader; their distance, rel_velocity, rel_angular_velocity,
+    // strain, slip, dashpot and break_energy columns are not written (the
+    // model gets them packed, dense_batch.hpp) and hold stale values.
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
     std::vector<double> radius1, radius2, mass1, mass2, eff_mass, eff_radius;
@@ -41,6 +45,8 @@ struct ContactSet {
     std::size_t size() const { return end1.size(); }
     void resize_columns(std::size_t n, int n_accumulated);
 };
+
+struct DenseBatch;  // dense_batch.hpp: the active rows of one batch, packed for the model
 
 // Rows per call of a model (one C ABI call per batch). Batches are fixed row
 // ranges, never per thread, so sums taken per batch are thread-count free.
@@ -209,17 +215,37 @@ private:
     std::vector<Entry> entries_;
     std::vector<ContactSet*> sets_;
     std::vector<const ModelInstance*> set_owner_;
-    // CSR slot of each row's end 1 / end 2 in entries_ (per set), and what
-    // each slot adds to its body this cycle: force and moment (kSlotDoubles
-    // per slot, one cache line); slot_live_: the row's slots are non-zero
+    // The deterministic reduction. Each set's rows are cut into chunks of
+    // whole batches, their number a function of the row count only (never of
+    // the threads). A chunk adds its active rows' forces and moments, in row
+    // order, into its own partial array over the bodies it touches (lo..hi,
+    // kSlotDoubles per body: force, moment), and reduce() adds the partials
+    // to each body in chunk order: the same sums for any thread count.
     static constexpr std::size_t kSlotDoubles = 6;
-    std::vector<std::vector<std::uint32_t>> slot1_, slot2_;
-    std::vector<double> slot_fm_;
-    std::vector<std::vector<std::uint8_t>> slot_live_;
+    struct Chunk {
+        std::uint32_t set;
+        std::size_t begin, end;  // rows
+        std::int32_t lo, hi;     // bodies touched (hi < lo: none)
+        std::size_t offset;      // into partial_fm_
+    };
+    std::vector<Chunk> chunks_;
+    std::vector<std::uint32_t> set_chunks_;  // chunks of set si: [set_chunks_[si], set_chunks_[si + 1])
+    std::vector<double> partial_fm_;
+    // Per set and batch, for the outputs moment1, moment2, k_t, k_r,
+    // dt_limit: the value every row of the batch holds in the set's column,
+    // when they all hold the same (zero moments, a constant stiffness). The
+    // dense path then skips writing an unchanged output back (unpack_rows).
+    struct HeldOutputs { double value[5]; std::uint8_t uniform[5]; };
+    std::vector<std::vector<HeldOutputs>> held_;
+    // per set and row: the row may hold history other than the defaults (it
+    // was active at the last force pass, or came with its history from the
+    // last list): only such rows need their history reset when out of range
+    std::vector<std::vector<std::uint8_t>> live_;
+    void build_chunks();
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
-    void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end);
-    void scatter_to_slots(std::uint32_t set_index);
+    void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end, const Chunk& chunk);
+    void scatter_to_chunks(std::uint32_t set_index);
     void force_sweep(std::uint32_t set_index, bool with_geometry);
     // per-body stiffness sums of the last force pass, summed on demand
     mutable std::vector<double> k_trans_, k_rot_;
@@ -281,6 +307,12 @@ private:
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
+    bool pack_ball_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end,
+                        DenseBatch& d);
+    void unpack_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
+                     const Chunk& chunk);
+    void write_back(double* column, std::size_t width, const double* dense, const DenseBatch& d, std::size_t begin,
+                    std::size_t end, HeldOutputs& held, int which);
     int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
                    const double* const* read_cols, bool clear);
     [[noreturn]] void model_failed(const ModelInstance& inst) const;
@@ -293,6 +325,7 @@ private:
     void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
                            std::vector<std::array<std::int32_t, 2>>& pairs) const;
     void force_pass();
+    bool finish_body_force(std::size_t body, double& local_work);
     bool reduce();  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
     void kick(double half_dt);

@@ -1,0 +1,204 @@
+// Range test, packing and unpacking of ball–ball rows for the dense batch
+// (dense_batch.hpp). The arithmetic is that of ball_geometry_rows() and
+// scatter_rows(), so results are the same bit for bit.
+#include "dense_batch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace plab {
+
+namespace {
+inline void put(double* col, std::size_t a, const Vec& v) {
+    col[3 * a] = v.x(); col[3 * a + 1] = v.y(); col[3 * a + 2] = v.z();
+}
+inline void copy3(double* to, std::size_t k, const double* from, std::size_t a) {
+    to[3 * k] = from[3 * a]; to[3 * k + 1] = from[3 * a + 1]; to[3 * k + 2] = from[3 * a + 2];
+}
+inline std::uint64_t bits(double v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+}
+} // namespace
+
+// Rows [begin, end): the range test of every candidate (gap, distance and
+// the active flag stay in the set's columns, for every reader), the history
+// of rows that left the range back to its declared defaults (a separated
+// contact is forgotten, as the adapter's batch loop did; a row that stays
+// out of range keeps them), and the geometry of the rows
+// in range packed into d. True when an active contact overlaps beyond its
+// model's max_overlap.
+bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+                           DenseBatch& d) {
+    ContactSet& s = *sets_[si];
+    std::uint8_t* live = live_[si].data();
+    const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
+    const int persist = inst.desc->persist_slot;
+    const std::size_t stride = std::size_t(inst.stride);
+    const auto& B = bodies;
+    std::uint32_t idle[kContactBatch];
+    std::size_t n_active = 0, n_idle = 0;
+    for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
+        const std::int32_t i = s.end1[k], j = s.end2[k];
+        const double dist = (B.position[j] - B.position[i]).norm();
+        const double gap = dist - s.radius1[k] - s.radius2[k];
+        const bool bonded = persist >= 0 && s.history[k * stride + persist] > 0;
+        const bool active = bonded || (by_distance ? dist <= inst.range : gap <= inst.range);
+        s.gap[k] = gap;  // (the centre distance of a ball–ball row is read by the model only)
+        s.active[k] = active;
+        d.gap[n_active] = gap;
+        d.distance[n_active] = dist;
+        d.row[n_active] = std::uint32_t(k);
+        idle[n_idle] = std::uint32_t(k);
+        n_active += active;
+        n_idle += !active & (live[k] != 0);  // just left the range: history to forget
+        live[k] = active;
+    }
+    for (std::size_t r = 0; r < n_idle; ++r)
+        for (std::size_t h = 0; h < stride; ++h) s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
+    bool exceeded = false;
+    for (std::size_t a = 0; a < n_active; ++a) {
+        const std::size_t k = d.row[a];
+        const std::int32_t i = s.end1[k], j = s.end2[k];
+        const Vec& xi = B.position[i];
+        const double ri = s.radius1[k], rj = s.radius2[k];
+        const Vec dx = B.position[j] - xi;
+        const double dist = d.distance[a], gap = d.gap[a];
+        const Vec normal = dist > 0 ? Vec(dx / dist) : Vec::UnitX();
+        const Vec point = xi + normal * (ri + 0.5 * gap);  // middle of the overlap
+        const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(point - B.position[j]);
+        const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
+        d.end1[a] = i;
+        d.end2[a] = j;
+        put(d.normal, a, normal);
+        put(d.point, a, point);
+        put(d.rel_velocity, a, vj - vi);
+        put(d.rel_angular_velocity, a, B.angular_velocity[j] - B.angular_velocity[i]);
+        d.radius1[a] = ri;
+        d.radius2[a] = rj;
+        // masses from the bodies (in cache) rather than the set's columns,
+        // with fill_pair_constants()'s arithmetic
+        const double mi = B.mass[i], mj = B.mass[j];
+        d.mass1[a] = mi;
+        d.mass2[a] = mj;
+        d.eff_mass[a] = mi * mj / (mi + mj);
+        d.eff_radius[a] = ri * rj / (ri + rj);
+        for (std::size_t h = 0; h < stride; ++h) d.history[a * stride + h] = s.history[k * stride + h];  // a loop, not a memmove call, for a few doubles
+        exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
+    }
+    d.count = std::uint32_t(n_active);
+    // the outputs a model adds to start from zero (dt limit: no limit)
+    for (double* v : {d.force, d.moment1, d.moment2}) std::fill_n(v, 3 * n_active, 0.0);
+    for (double* v : {d.strain, d.slip, d.dashpot, d.k_t, d.k_r, d.break_energy}) std::fill_n(v, n_active, 0.0);
+    std::fill_n(d.dt_limit, n_active, kInf);
+    return exceeded;
+}
+
+int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols) {
+    if (d.count == 0) return 0;
+    plab_contact_batch batch{};
+    batch.dim = uint32_t(dim);
+    batch.count = d.count;
+    batch.end2_is_wall = 0;
+    batch.history_stride = uint32_t(inst.stride);
+    batch.dt = dt;
+    batch.end1 = d.end1;
+    batch.end2 = d.end2;
+    batch.active = d.active;
+    batch.normal = d.normal;
+    batch.gap = d.gap;
+    batch.distance = d.distance;
+    batch.rel_velocity = d.rel_velocity;
+    batch.rel_angular_velocity = d.rel_angular_velocity;
+    batch.radius1 = d.radius1;
+    batch.radius2 = d.radius2;
+    batch.mass1 = d.mass1;
+    batch.mass2 = d.mass2;
+    batch.eff_mass = d.eff_mass;
+    batch.eff_radius = d.eff_radius;
+    batch.body_fields = read_cols;
+    batch.history = d.history.data();
+    batch.force = d.force;
+    batch.moment1 = d.moment1;
+    batch.moment2 = d.moment2;
+    batch.strain_energy = d.strain;
+    batch.slip_energy = d.slip;
+    batch.dashpot_energy = d.dashpot;
+    batch.stiffness_translational = d.k_t;
+    batch.stiffness_rotational = d.k_r;
+    batch.dt_limit = d.dt_limit;
+    batch.accumulate1 = nullptr;  // models that accumulate fields take the full-column path
+    batch.accumulate2 = nullptr;
+    batch.break_energy = d.break_energy;
+    batch.stage = PLAB_STAGE_FORCES;
+    return inst.desc->compute(inst.state, inst.props.data(), &batch);
+}
+
+// Back from the packed rows of batch [begin, end): history, and what the
+// readers of the contact columns use (force, moments, point, normal,
+// stiffnesses, step limit: outputs, stress, stable step, bond breaks,
+// checkpoints); then each row's force and moments added to the chunk's partial
+// sums, and the batch's energy sums, as scatter_rows() does for full columns.
+void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
+                        const Chunk& ch) {
+    ContactSet& s = *sets_[si];
+    const auto& B = bodies;
+    const std::size_t stride = std::size_t(inst.stride);
+    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
+    const std::int32_t lo = ch.lo;
+    double strain = 0, slip = 0, dashpot = 0, broken = 0;
+    for (std::size_t a = 0; a < d.count; ++a) {
+        const std::size_t k = d.row[a];
+        for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = d.history[a * stride + h];
+        copy3(s.force.data(), k, d.force, a);
+        copy3(s.point.data(), k, d.point, a);
+        copy3(s.normal.data(), k, d.normal, a);
+        strain += d.strain[a];
+        slip += d.slip[a];
+        dashpot += d.dashpot[a];
+        broken += d.break_energy[a];
+        const Vec f2(&d.force[3 * a]), point(&d.point[3 * a]);
+        const Vec m1 = (point - B.position[d.end1[a]]).cross(-f2) + Vec(&d.moment1[3 * a]);
+        const Vec m2 = (point - B.position[d.end2[a]]).cross(f2) + Vec(&d.moment2[3 * a]);
+        double* f1m1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
+        double* f2m2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
+        for (int c = 0; c < 3; ++c) { f1m1[c] -= f2[c]; f1m1[3 + c] += m1[c]; }
+        for (int c = 0; c < 3; ++c) { f2m2[c] += f2[c]; f2m2[3 + c] += m2[c]; }
+    }
+    double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
+    e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = 0;
+    HeldOutputs& held = held_[si][begin / kContactBatch];
+    const std::size_t end = std::min(s.size(), begin + kContactBatch);
+    write_back(s.moment1.data(), 3, d.moment1, d, begin, end, held, 0);
+    write_back(s.moment2.data(), 3, d.moment2, d, begin, end, held, 1);
+    write_back(s.k_t.data(), 1, d.k_t, d, begin, end, held, 2);
+    write_back(s.k_r.data(), 1, d.k_r, d, begin, end, held, 3);
+    write_back(s.dt_limit.data(), 1, d.dt_limit, d, begin, end, held, 4);
+}
+
+// One output column (`width` doubles per row) back from the packed rows of
+// batch [begin, end). Most models give many outputs one value for every
+// contact (no pure moments, a constant stiffness, no step limit): then the
+// whole batch is filled with it once, and later steps that give the same
+// value write nothing. Values are compared bit for bit.
+void World::write_back(double* col, std::size_t width, const double* dense, const DenseBatch& d, std::size_t begin,
+                       std::size_t end, HeldOutputs& held, int which) {
+    const std::size_t n = width * d.count;
+    if (n == 0) return;  // no row to report: what the column holds is not read
+    const double u = dense[0];
+    bool same = true;
+    for (std::size_t i = 1; i < n; ++i) same &= bits(dense[i]) == bits(u);
+    if (same && held.uniform[which] && bits(held.value[which]) == bits(u)) return;
+    held.uniform[which] = same;
+    held.value[which] = u;
+    if (same) {
+        std::fill(col + width * begin, col + width * end, u);
+        return;
+    }
+    for (std::size_t a = 0; a < d.count; ++a)
+        for (std::size_t c = 0; c < width; ++c) col[width * d.row[a] + c] = dense[width * a + c];
+}
+
+} // namespace plab
