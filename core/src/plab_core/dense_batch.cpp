@@ -1,5 +1,6 @@
 // Range test, packing and unpacking of ball–ball rows for the dense batch
-// (dense_batch.hpp). The arithmetic is that of ball_geometry_rows() and
+// (dense_batch.hpp). The geometry is ball_pair_kinematics(), as in
+// ball_geometry_rows(); the sums are those of
 // scatter_rows(), so results are the same bit for bit.
 #include "dense_batch.hpp"
 
@@ -34,8 +35,7 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
                            DenseBatch& d) {
     ContactSet& s = *sets_[si];
     std::uint8_t* live = live_[si].data();
-    const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
-    const int persist = inst.desc->persist_slot;
+    const RangeTest in_range(inst);
     const std::size_t stride = std::size_t(inst.stride);
     const auto& B = bodies;
     std::uint32_t idle[kContactBatch];
@@ -44,8 +44,7 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         const std::int32_t i = s.end1[k], j = s.end2[k];
         const double dist = (B.position[j] - B.position[i]).norm();
         const double gap = dist - s.radius1[k] - s.radius2[k];
-        const bool bonded = persist >= 0 && s.history[k * stride + persist] > 0;
-        const bool active = bonded || (by_distance ? dist <= inst.range : gap <= inst.range);
+        const bool active = in_range(s.history, k, dist, gap);
         s.gap[k] = gap;  // (the centre distance of a ball–ball row is read by the model only)
         s.active[k] = active;
         d.gap[n_active] = gap;
@@ -62,20 +61,14 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];
         const std::int32_t i = s.end1[k], j = s.end2[k];
-        const Vec& xi = B.position[i];
-        const double ri = s.radius1[k], rj = s.radius2[k];
-        const Vec dx = B.position[j] - xi;
-        const double dist = d.distance[a], gap = d.gap[a];
-        const Vec normal = dist > 0 ? Vec(dx / dist) : Vec::UnitX();
-        const Vec point = xi + normal * (ri + 0.5 * gap);  // middle of the overlap
-        const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(point - B.position[j]);
-        const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
+        const double ri = s.radius1[k], rj = s.radius2[k], gap = d.gap[a];
+        const PairKinematics p = ball_pair_kinematics(B, i, j, ri, d.distance[a], gap);
         d.end1[a] = i;
         d.end2[a] = j;
-        put(d.normal, a, normal);
-        put(d.point, a, point);
-        put(d.rel_velocity, a, vj - vi);
-        put(d.rel_angular_velocity, a, B.angular_velocity[j] - B.angular_velocity[i]);
+        put(d.normal, a, p.normal);
+        put(d.point, a, p.point);
+        put(d.rel_velocity, a, p.rel_velocity);
+        put(d.rel_angular_velocity, a, p.rel_angular_velocity);
         d.radius1[a] = ri;
         d.radius2[a] = rj;
         // masses from the bodies (in cache) rather than the set's columns,
@@ -104,34 +97,10 @@ int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double d
     batch.end2_is_wall = 0;
     batch.history_stride = uint32_t(inst.stride);
     batch.dt = dt;
-    batch.end1 = d.end1;
-    batch.end2 = d.end2;
-    batch.active = d.active;
-    batch.normal = d.normal;
-    batch.gap = d.gap;
-    batch.distance = d.distance;
-    batch.rel_velocity = d.rel_velocity;
-    batch.rel_angular_velocity = d.rel_angular_velocity;
-    batch.radius1 = d.radius1;
-    batch.radius2 = d.radius2;
-    batch.mass1 = d.mass1;
-    batch.mass2 = d.mass2;
-    batch.eff_mass = d.eff_mass;
-    batch.eff_radius = d.eff_radius;
+    bind_rows(batch, d, 0, d.history.data());
     batch.body_fields = read_cols;
-    batch.history = d.history.data();
-    batch.force = d.force;
-    batch.moment1 = d.moment1;
-    batch.moment2 = d.moment2;
-    batch.strain_energy = d.strain;
-    batch.slip_energy = d.slip;
-    batch.dashpot_energy = d.dashpot;
-    batch.stiffness_translational = d.k_t;
-    batch.stiffness_rotational = d.k_r;
-    batch.dt_limit = d.dt_limit;
     batch.accumulate1 = nullptr;  // models that accumulate fields take the full-column path
     batch.accumulate2 = nullptr;
-    batch.break_energy = d.break_energy;
     batch.stage = PLAB_STAGE_FORCES;
     return inst.desc->compute(inst.state, inst.props.data(), &batch);
 }

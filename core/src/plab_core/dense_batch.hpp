@@ -9,6 +9,7 @@
 
 #include "world.hpp"
 
+#include <iterator>
 #include <memory>
 
 namespace plab {
@@ -37,6 +38,72 @@ struct DenseBatch {
         return *d;
     }
 };
+
+// Whether a ball–ball candidate is in its model's range: bonded rows always
+// are; otherwise the gap or the centre distance, as the model declares.
+struct RangeTest {
+    bool by_distance;
+    int persist;  // history slot that marks a bond, or -1
+    double range;
+    std::size_t stride;
+    explicit RangeTest(const ModelInstance& inst)
+        : by_distance(inst.desc->range_kind == PLAB_RANGE_DISTANCE), persist(inst.desc->persist_slot),
+          range(inst.range), stride(std::size_t(inst.stride)) {}
+    bool operator()(const std::vector<double>& history, std::size_t k, double dist, double gap) const {
+        const bool bonded = persist >= 0 && history[k * stride + std::size_t(persist)] > 0;
+        return bonded || (by_distance ? dist <= range : gap <= range);
+    }
+};
+
+// The contact geometry of balls i and j at centre distance `dist`, gap `gap`:
+// normal from i to j, contact point in the middle of the overlap, and the
+// velocities of j relative to i at that point.
+struct PairKinematics {
+    Vec normal, point, rel_velocity, rel_angular_velocity;
+};
+inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
+                                           double gap) {
+    const Vec& xi = B.position[i];
+    PairKinematics p;
+    p.normal = dist > 0 ? Vec((B.position[j] - xi) / dist) : Vec::UnitX();
+    p.point = xi + p.normal * (ri + 0.5 * gap);
+    const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(p.point - B.position[j]);
+    const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(p.point - xi);
+    p.rel_velocity = vj - vi;
+    p.rel_angular_velocity = B.angular_velocity[j] - B.angular_velocity[i];
+    return p;
+}
+
+// Points a batch view at rows [o, ...) of a set of contact columns with the
+// ABI's names: a ContactSet (std::vector columns) or a DenseBatch (arrays).
+template <class Columns>
+void bind_rows(plab_contact_batch& b, Columns& c, std::size_t o, double* history) {
+    b.end1 = std::data(c.end1) + o;
+    b.end2 = std::data(c.end2) + o;
+    b.active = std::data(c.active) + o;
+    b.normal = std::data(c.normal) + 3 * o;
+    b.gap = std::data(c.gap) + o;
+    b.distance = std::data(c.distance) + o;
+    b.rel_velocity = std::data(c.rel_velocity) + 3 * o;
+    b.rel_angular_velocity = std::data(c.rel_angular_velocity) + 3 * o;
+    b.radius1 = std::data(c.radius1) + o;
+    b.radius2 = std::data(c.radius2) + o;
+    b.mass1 = std::data(c.mass1) + o;
+    b.mass2 = std::data(c.mass2) + o;
+    b.eff_mass = std::data(c.eff_mass) + o;
+    b.eff_radius = std::data(c.eff_radius) + o;
+    b.history = history;
+    b.force = std::data(c.force) + 3 * o;
+    b.moment1 = std::data(c.moment1) + 3 * o;
+    b.moment2 = std::data(c.moment2) + 3 * o;
+    b.strain_energy = std::data(c.strain) + o;
+    b.slip_energy = std::data(c.slip) + o;
+    b.dashpot_energy = std::data(c.dashpot) + o;
+    b.stiffness_translational = std::data(c.k_t) + o;
+    b.stiffness_rotational = std::data(c.k_r) + o;
+    b.dt_limit = std::data(c.dt_limit) + o;
+    b.break_energy = std::data(c.break_energy) + o;
+}
 
 // Calls the model once on the packed rows; returns its status.
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols);

@@ -90,8 +90,7 @@ bool World::geometry_rows(const ModelInstance& inst, ContactSet& s, std::size_t 
 // of the listed rows only. The in-range flags of a Verlet list follow no
 // pattern, so a branch per row would be mispredicted about half the time.
 bool World::ball_geometry_rows(const ModelInstance& inst, ContactSet& s, std::size_t begin, std::size_t end) {
-    const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
-    const int persist = inst.desc->persist_slot;
+    const RangeTest in_range(inst);
     const auto& B = bodies;
     std::uint32_t rows[kContactBatch];
     bool exceeded = false;
@@ -102,8 +101,7 @@ bool World::ball_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
             const std::int32_t i = s.end1[k], j = s.end2[k];
             const double dist = (B.position[j] - B.position[i]).norm();
             const double gap = dist - s.radius1[k] - s.radius2[k];
-            const bool bonded = persist >= 0 && s.history[k * inst.stride + persist] > 0;
-            const bool active = bonded || (by_distance ? dist <= inst.range : gap <= inst.range);
+            const bool active = in_range(s.history, k, dist, gap);
             s.gap[k] = gap;
             s.distance[k] = dist;
             s.active[k] = active;
@@ -112,19 +110,12 @@ bool World::ball_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
         }
         for (std::size_t a = 0; a < n_active; ++a) {
             const std::size_t k = rows[a];
-            const std::int32_t i = s.end1[k], j = s.end2[k];
-            const Vec& xi = B.position[i];
-            const double ri = s.radius1[k], rj = s.radius2[k];
-            const Vec d = B.position[j] - xi;
-            const double dist = s.distance[k], gap = s.gap[k];
-            const Vec normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
-            const Vec point = xi + normal * (ri + 0.5 * gap);  // middle of the overlap
-            const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(point - B.position[j]);
-            const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
-            put(s.normal, k, normal);
-            put(s.point, k, point);
-            put(s.rel_velocity, k, vj - vi);
-            put(s.rel_angular_velocity, k, B.angular_velocity[j] - B.angular_velocity[i]);
+            const double ri = s.radius1[k], rj = s.radius2[k], gap = s.gap[k];
+            const PairKinematics p = ball_pair_kinematics(B, s.end1[k], s.end2[k], ri, s.distance[k], gap);
+            put(s.normal, k, p.normal);
+            put(s.point, k, p.point);
+            put(s.rel_velocity, k, p.rel_velocity);
+            put(s.rel_angular_velocity, k, p.rel_angular_velocity);
             clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, install_pairs)
             exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
         }
@@ -195,34 +186,10 @@ int World::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::si
     batch.end2_is_wall = s.with_wall;
     batch.history_stride = uint32_t(inst.stride);
     batch.dt = last_dt;
-    batch.end1 = s.end1.data() + o;
-    batch.end2 = s.end2.data() + o;
-    batch.active = s.active.data() + o;
-    batch.normal = s.normal.data() + 3 * o;
-    batch.gap = s.gap.data() + o;
-    batch.distance = s.distance.data() + o;
-    batch.rel_velocity = s.rel_velocity.data() + 3 * o;
-    batch.rel_angular_velocity = s.rel_angular_velocity.data() + 3 * o;
-    batch.radius1 = s.radius1.data() + o;
-    batch.radius2 = s.radius2.data() + o;
-    batch.mass1 = s.mass1.data() + o;
-    batch.mass2 = s.mass2.data() + o;
-    batch.eff_mass = s.eff_mass.data() + o;
-    batch.eff_radius = s.eff_radius.data() + o;
+    bind_rows(batch, s, o, s.history.data() + o * inst.stride);
     batch.body_fields = read_cols;
-    batch.history = s.history.data() + o * inst.stride;
-    batch.force = s.force.data() + 3 * o;
-    batch.moment1 = s.moment1.data() + 3 * o;
-    batch.moment2 = s.moment2.data() + 3 * o;
-    batch.strain_energy = s.strain.data() + o;
-    batch.slip_energy = s.slip.data() + o;
-    batch.dashpot_energy = s.dashpot.data() + o;
-    batch.stiffness_translational = s.k_t.data() + o;
-    batch.stiffness_rotational = s.k_r.data() + o;
-    batch.dt_limit = s.dt_limit.data() + o;
     batch.accumulate1 = a1;
     batch.accumulate2 = a2;
-    batch.break_energy = s.break_energy.data() + o;
     batch.stage = stage;
     return inst.desc->compute(inst.state, inst.props.data(), &batch);
 }
