@@ -56,7 +56,14 @@ inline StrengthRule beam_fibre_rule() { return {"along_bonds", 1.0, 207e6}; }
 // viscous damping to an unbalanced-force ratio. L = 0.201 m, E = 70 GPa,
 // ν = 0.33, σ_ult = 310 MPa (thesis Table 4); rows chosen so the height is
 // closest to 6.196 mm.
-Cantilever static_cantilever(double radius, double load, double ratio, const StrengthRule& rule = {});
+// The clamp: ball centres within clamp_depth·R of the left end are fixed.
+// 2.2 fixes one ball per row, and the odd rows (centres at 2R) reach R
+// further into the span than the outer, even rows; 3.2 fixes two balls of
+// the even rows, and the outer rows reach R further than the odd ones
+// (docs/bonded-structures.md: where the first bond breaks depends on it).
+constexpr double kClampDepth = 2.2;
+Cantilever static_cantilever(double radius, double load, double ratio, const StrengthRule& rule = {},
+                             double clamp_depth = kClampDepth);
 
 struct VelocityFailure {
     double reaction = 0;     // force on the driven ball when the first bond broke, N
