@@ -319,6 +319,8 @@ private:
     void resolve_wall_features(ContactSet& set);
     void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
     void rates_stage();
+    bool rates_stage_needed(const ModelInstance& inst) const;
+    void mark_ball_rows_in_range();
     void accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i);
     void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);
