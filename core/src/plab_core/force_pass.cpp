@@ -234,6 +234,7 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     // accumulates body fields in this stage (those sums walk the full
     // columns, reduce()); a rates-stage model's force-stage sums are not kept
     const bool dense = with_geometry && (inst.fields_accumulated.empty() || inst.desc->rates_stage);
+    const bool at_centres = (inst.desc->flags & PLAB_MODEL_FORCE_AT_CENTRES) != 0;
     const std::uint32_t c0 = set_chunks_[si], c1 = set_chunks_[si + 1];
     int failed = 0;
     bool exceeded = false;
@@ -243,6 +244,13 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
         if (ch.hi >= ch.lo) std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * std::size_t(ch.hi - ch.lo + 1), 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
             const std::size_t m = std::min(kContactBatch, ch.end - o);
+            if (dense && at_centres) {  // SPH: no spin, moments, stiffness or energies
+                DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
+                exceeded |= pack_centre_rows(inst, si, o, o + m, d);
+                if (call_model_dense(inst, d, dim, last_dt, read_cols) != 0) failed = 1;
+                unpack_centre_rows(si, inst, d, o, ch);
+                continue;
+            }
             if (dense) {
                 DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
                 exceeded |= pack_ball_rows(inst, si, o, o + m, d);

@@ -311,6 +311,11 @@ private:
                         DenseBatch& d);
     void unpack_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
                      const Chunk& chunk);
+    // the same for a model with PLAB_MODEL_FORCE_AT_CENTRES (centre_force_batch.cpp)
+    bool pack_centre_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end,
+                          DenseBatch& d);
+    void unpack_centre_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d,
+                            std::size_t begin, const Chunk& chunk);
     void write_back(double* column, std::size_t width, const double* dense, const DenseBatch& d, std::size_t begin,
                     std::size_t end, HeldOutputs& held, int which);
     int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
