@@ -30,7 +30,10 @@ struct ContactSet {
     // dense path (force_sweep) keep active, gap, normal and point up to date
     // for every reader; their distance, rel_velocity, rel_angular_velocity,
     // strain, slip, dashpot and break_energy columns are not written (the
-    // model gets them packed, dense_batch.hpp) and hold stale values.
+    // model gets them packed, dense_batch.hpp) and hold stale values. Those
+    // of a PLAB_MODEL_FORCE_AT_CENTRES model (centre_force_batch.cpp) write
+    // back force, point, normal and dt_limit only: moments, stiffness and
+    // energies stay zero.
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
     std::vector<double> radius1, radius2, mass1, mass2, eff_mass, eff_radius;
