@@ -36,19 +36,36 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     const auto& B = bodies;
     std::uint32_t idle[kContactBatch];
     std::size_t n_active = 0, n_idle = 0;
-    for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
-        const double dist = (B.position[s.end2[k]] - B.position[s.end1[k]]).norm();
-        const double gap = dist - s.radius1[k] - s.radius2[k];
-        const bool active = in_range(s.history, k, dist, gap);
-        s.gap[k] = gap;
-        s.active[k] = active;
-        d.gap[n_active] = gap;
-        d.distance[n_active] = dist;
-        d.row[n_active] = std::uint32_t(k);
-        idle[n_idle] = std::uint32_t(k);
-        n_active += active;
-        n_idle += !active & (live[k] != 0);
-        live[k] = active;
+    if (in_range_marked_) {  // mark_ball_rows_in_range() tested these positions: list its rows in range
+        for (std::size_t k = begin; k < end; ++k) {
+            const bool active = s.active[k] != 0;
+            d.row[n_active] = std::uint32_t(k);
+            idle[n_idle] = std::uint32_t(k);
+            n_active += active;
+            n_idle += !active & (live[k] != 0);
+            live[k] = active;
+        }
+        for (std::size_t a = 0; a < n_active; ++a) {  // the same arithmetic as the test
+            const std::size_t k = d.row[a];
+            const std::int32_t i = s.end1[k], j = s.end2[k];
+            d.distance[a] = (B.position[j] - B.position[i]).norm();
+            d.gap[a] = d.distance[a] - B.radius[i] - B.radius[j];
+        }
+    } else {
+        for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
+            const double dist = (B.position[s.end2[k]] - B.position[s.end1[k]]).norm();
+            const double gap = dist - s.radius1[k] - s.radius2[k];
+            const bool active = in_range(s.history, k, dist, gap);
+            s.gap[k] = gap;
+            s.active[k] = active;
+            d.gap[n_active] = gap;
+            d.distance[n_active] = dist;
+            d.row[n_active] = std::uint32_t(k);
+            idle[n_idle] = std::uint32_t(k);
+            n_active += active;
+            n_idle += !active & (live[k] != 0);
+            live[k] = active;
+        }
     }
     for (std::size_t r = 0; r < n_idle; ++r)
         for (std::size_t h = 0; h < stride; ++h) s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
@@ -56,7 +73,10 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];
         const std::int32_t i = s.end1[k], j = s.end2[k];
-        const double ri = s.radius1[k], dist = d.distance[a], gap = d.gap[a];
+        // radii and masses from the bodies (in cache) rather than the set's
+        // long columns, with fill_pair_constants()'s arithmetic
+        const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
+        const double dist = d.distance[a], gap = d.gap[a];
         const Vec normal = dist > 0 ? Vec((B.position[j] - B.position[i]) / dist) : Vec::UnitX();
         d.end1[a] = i;
         d.end2[a] = j;
@@ -65,13 +85,13 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
         put(d.rel_angular_velocity, a, Vec::Zero());
         d.radius1[a] = ri;
-        d.radius2[a] = s.radius2[k];
-        d.mass1[a] = s.mass1[k];  // pair constants, filled at rebuild (fill_pair_constants)
-        d.mass2[a] = s.mass2[k];
-        d.eff_mass[a] = s.eff_mass[k];
-        d.eff_radius[a] = s.eff_radius[k];
+        d.radius2[a] = rj;
+        d.mass1[a] = mi;
+        d.mass2[a] = mj;
+        d.eff_mass[a] = mi * mj / (mi + mj);
+        d.eff_radius[a] = ri * rj / (ri + rj);
         for (std::size_t h = 0; h < stride; ++h) d.history[a * stride + h] = s.history[k * stride + h];
-        exceeded |= -gap > inst.max_overlap * std::min(ri, d.radius2[a]);
+        exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
     }
     d.count = std::uint32_t(n_active);
     // only the outputs the host reads start from zero (dt limit: no limit)

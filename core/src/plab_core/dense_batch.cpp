@@ -108,6 +108,7 @@ void World::mark_ball_rows_in_range() {
             s.active[k] = in_range(s.history, k, dist, gap);
         }
     }
+    in_range_marked_ = true;
 }
 
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols) {

@@ -330,6 +330,7 @@ void World::force_pass() {
             build_pass_contacts();
             run_passes(PLAB_PHASE_RATES_DONE);
             for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
+            in_range_marked_ = false;
         } else if (swept_) {
             for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
             build_pass_contacts();  // the sweeps set the active flags

@@ -247,6 +247,7 @@ private:
     void build_chunks();
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
+    bool in_range_marked_ = false;   // mark_ball_rows_in_range() ran at the current positions
     void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end, const Chunk& chunk);
     void scatter_to_chunks(std::uint32_t set_index);
     void force_sweep(std::uint32_t set_index, bool with_geometry);
