@@ -29,12 +29,17 @@
  *      host reads it only from a plug-in of ABI 4 or later and takes 0 for
  *      an older one. PLAB_MODEL_FORCE_AT_CENTRES lets the host skip the
  *      contact point kinematics, the moments and the stiffness and energy
- *      sums of an interaction between particle centres (SPH).
+ *      sums of an interaction between particle centres (SPH). A checkpoint
+ *      written by an ABI 3 plab is refused by name (the host ABI is in it).
+ *      A model with rates_stage is no longer called in the rates stage when
+ *      no pass or model reads a field it accumulates (docs/sph.md).
  *
  * Contact models are called once per *batch* of contacts over host-owned
  * structure-of-arrays data (plab_contact_batch). A batch may hold only
  * active rows: the host packs the rows in contact for ball–ball contacts of
- * models that accumulate no body fields, and then itself resets the history
+ * models that accumulate no body fields (or, in the force stage, of a model
+ * with a rates stage, whose force-stage sums are not kept: its accumulate
+ * columns then point at scratch), and then itself resets the history
  * of a contact that leaves the activity range to the declared defaults (what
  * the C++ adapter's batch loop does with an inactive row). A model must not
  * rely on seeing its inactive rows. Passes are called once per
