@@ -43,6 +43,9 @@ struct Sph {
     static constexpr const char* timestep_rule =
         "per pair: CFL 0.25 h/(c0 + |v_rel|); laminar viscosity also 0.125 h^2 rho0/mu";
     static constexpr uint32_t range_kind = PLAB_RANGE_DISTANCE;
+    // particles interact through their centres: the host skips spin, moments,
+    // stiffness and energies for the ball–ball rows (abi.h, ABI 4)
+    static constexpr uint32_t flags = PLAB_MODEL_FORCE_AT_CENTRES;
 
     enum Prop : int {
         smoothing_length, kernel, rest_density, speed_of_sound, viscosity, mu, alpha, beta,

@@ -346,6 +346,8 @@ struct SphDensitySummation {
     void run(const plab_pass_view& v) {
         const plab::sph::Kernel W{kind_, int(v.dim), h_};
         const double support2 = W.support() * W.support(), w0 = W.value(0);
+        // W.value(r) with its normalisation taken once, not per pair (same arithmetic)
+        const double norm = plab::sph::normalisation(kind_, int(v.dim), h_);
         double* rho = v.fields[density];
         mass_sum_.assign(v.body_count, 0.0);
         volume_sum_.assign(normalised_ ? v.body_count : 0, 0.0);
@@ -357,7 +359,7 @@ struct SphDensitySummation {
             const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
             const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             if (r2 >= support2) continue;
-            const double w = W.value(std::sqrt(r2));
+            const double w = norm * plab::sph::detail::shape(kind_, std::sqrt(r2) / h_);
             mass_sum_[i] += v.mass[j] * w;
             mass_sum_[j] += v.mass[i] * w;
             if (!normalised_) continue;

@@ -25,11 +25,21 @@
  *      degrees of freedom (SPH's XSPH, thesis eq. 18). A pass of that phase
  *      needs a host of ABI 3 or later; nothing else changed, so ABI 1 and 2
  *      plug-ins load unchanged.
+ *   4  plab_contact_model_desc gains `flags` (PLAB_MODEL_*), appended; the
+ *      host reads it only from a plug-in of ABI 4 or later and takes 0 for
+ *      an older one. PLAB_MODEL_FORCE_AT_CENTRES lets the host skip the
+ *      contact point kinematics, the moments and the stiffness and energy
+ *      sums of an interaction between particle centres (SPH). A checkpoint
+ *      written by an ABI 3 plab is refused by name (the host ABI is in it).
+ *      A model with rates_stage is no longer called in the rates stage when
+ *      no pass or model reads a field it accumulates (docs/sph.md).
  *
  * Contact models are called once per *batch* of contacts over host-owned
  * structure-of-arrays data (plab_contact_batch). A batch may hold only
  * active rows: the host packs the rows in contact for ball–ball contacts of
- * models that accumulate no body fields, and then itself resets the history
+ * models that accumulate no body fields (or, in the force stage, of a model
+ * with a rates stage, whose force-stage sums are not kept: its accumulate
+ * columns then point at scratch), and then itself resets the history
  * of a contact that leaves the activity range to the declared defaults (what
  * the C++ adapter's batch loop does with an inactive row). A model must not
  * rely on seeing its inactive rows. Passes are called once per
@@ -48,7 +58,7 @@
 extern "C" {
 #endif
 
-#define PLAB_ABI_VERSION 3u
+#define PLAB_ABI_VERSION 4u
 #define PLAB_ABI_OLDEST 1u /* oldest plug-in ABI this host still loads */
 
 /* ---- descriptions ------------------------------------------------------ */
@@ -192,7 +202,19 @@ typedef struct plab_contact_model_desc {
     /* 1: call compute() in the rates stage too (see PLAB_STAGE_RATES); its
      * accumulations are summed after that stage, not after the force stage */
     uint32_t rates_stage;
+    /* since ABI 4: PLAB_MODEL_* bits (0 for a plug-in of ABI 3 or older) */
+    uint32_t flags;
 } plab_contact_model_desc;
+
+/* PLAB_MODEL_FORCE_AT_CENTRES (since ABI 4): the pair force acts between the
+ * two particle centres, as in SPH (an interaction of points, not a touching
+ * surface). For its ball-ball contacts the host passes the relative velocity
+ * of the centres and zero rel_angular_velocity, applies no moment (neither
+ * r x F nor moment1/moment2), and reads no stiffness (stiffness_*) or energy
+ * (strain/slip/dashpot/break) outputs: the model's step limit is its
+ * dt_limit. Balls with such contacts should have their rotation fixed. */
+#define PLAB_MODEL_FORCE_AT_CENTRES 1u
+#define PLAB_MODEL_KNOWN_FLAGS PLAB_MODEL_FORCE_AT_CENTRES
 
 #define PLAB_BREAK_TENSION 1
 #define PLAB_BREAK_SHEAR 2

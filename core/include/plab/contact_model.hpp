@@ -20,7 +20,8 @@
 // Optional members: `fields_read[]`, `fields_accumulated[]`
 // (plab_field_desc arrays) to read body fields / accumulate into them;
 // `persist_slot` (int) for a model with bonds; `rates_stage` (bool) for a
-// model that accumulates field rates before forces (SPH; see abi.h).
+// model that accumulates field rates before forces (SPH; see abi.h);
+// `flags` (uint32_t, PLAB_MODEL_* of abi.h) e.g. for a force between centres.
 #ifndef PLAB_CONTACT_MODEL_HPP
 #define PLAB_CONTACT_MODEL_HPP
 
@@ -117,6 +118,8 @@ template <class M, class = void> struct has_persist : std::false_type {};
 template <class M> struct has_persist<M, std::void_t<decltype(M::persist_slot)>> : std::true_type {};
 template <class M, class = void> struct has_rates : std::false_type {};
 template <class M> struct has_rates<M, std::void_t<decltype(M::rates_stage)>> : std::true_type {};
+template <class M, class = void> struct has_flags : std::false_type {};
+template <class M> struct has_flags<M, std::void_t<decltype(M::flags)>> : std::true_type {};
 template <class M, class = void> struct has_history : std::false_type {};
 template <class M> struct has_history<M, std::void_t<decltype(M::history)>> : std::true_type {};
 
@@ -195,6 +198,7 @@ template <class M> const plab_contact_model_desc* contact_model_desc() {
         x.persist_slot = -1;
         if constexpr (detail::has_persist<M>::value) x.persist_slot = M::persist_slot;
         if constexpr (detail::has_rates<M>::value) x.rates_stage = M::rates_stage ? 1u : 0u;
+        if constexpr (detail::has_flags<M>::value) x.flags = M::flags;
         return x;
     }();
     return &d;

@@ -89,6 +89,28 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
     return exceeded;
 }
 
+// The range test alone, for every ball–ball set (gap and active flag, as
+// pack_ball_rows() sets them): the contacts the passes of phase RATES_DONE
+// see when a rates-stage model's own stage is skipped and its forces come
+// from the packed sweep, after those passes.
+void World::mark_ball_rows_in_range() {
+    const auto& B = bodies;
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
+        ContactSet& s = *sets_[si];
+        if (s.with_wall) continue;
+        const RangeTest in_range(*set_owner_[si]);
+        const std::size_t n = s.size();
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+        for (std::size_t k = 0; k < n; ++k) {
+            const double dist = (B.position[s.end2[k]] - B.position[s.end1[k]]).norm();
+            const double gap = dist - s.radius1[k] - s.radius2[k];
+            s.gap[k] = gap;
+            s.active[k] = in_range(s.history, k, dist, gap);
+        }
+    }
+    in_range_marked_ = true;
+}
+
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols) {
     if (d.count == 0) return 0;
     plab_contact_batch batch{};
@@ -99,8 +121,12 @@ int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double d
     batch.dt = dt;
     bind_rows(batch, d, 0, d.history.data());
     batch.body_fields = read_cols;
-    batch.accumulate1 = nullptr;  // models that accumulate fields take the full-column path
-    batch.accumulate2 = nullptr;
+    // models that accumulate fields take the full-column path, except in
+    // the force stage of a rates-stage model, whose sums are not kept
+    const bool discard = !inst.fields_accumulated.empty();
+    if (inst.fields_accumulated.size() > DenseBatch::kMaxDiscarded) return 3;
+    batch.accumulate1 = discard ? d.discard_columns : nullptr;
+    batch.accumulate2 = discard ? d.discard_columns : nullptr;
     batch.stage = PLAB_STAGE_FORCES;
     return inst.desc->compute(inst.state, inst.props.data(), &batch);
 }

@@ -29,7 +29,16 @@ struct DenseBatch {
     double force[3 * N], moment1[3 * N], moment2[3 * N];
     double strain[N], slip[N], dashpot[N], k_t[N], k_r[N], dt_limit[N], break_energy[N];
 
-    DenseBatch() { std::fill_n(active, N, std::uint8_t(1)); }
+    // where the force stage of a rates-stage model accumulates: not kept
+    // (abi.h, rates_stage), but the model may write there
+    static constexpr std::size_t kMaxDiscarded = 16;
+    double discarded[N];
+    double* discard_columns[kMaxDiscarded];
+
+    DenseBatch() {
+        std::fill_n(active, N, std::uint8_t(1));
+        std::fill_n(discard_columns, kMaxDiscarded, &discarded[0]);
+    }
     // this thread's scratch: allocated on its first use, then reused every cycle
     static DenseBatch& for_this_thread(std::size_t history_stride) {
         thread_local std::unique_ptr<DenseBatch> d;

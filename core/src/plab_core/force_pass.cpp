@@ -231,8 +231,10 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     if (inst.fields_read.size() > 16) throw PluginError("contact model '" + inst.model + "' reads more than 16 body fields");
     for (std::size_t f = 0; f < inst.fields_read.size(); ++f) read_cols[f] = fields_[inst.fields_read[f]].data();
     // ball–ball rows go to the model packed (dense_batch.hpp), unless it
-    // accumulates body fields (those sums walk the full columns, reduce())
-    const bool dense = with_geometry && inst.fields_accumulated.empty();
+    // accumulates body fields in this stage (those sums walk the full
+    // columns, reduce()); a rates-stage model's force-stage sums are not kept
+    const bool dense = with_geometry && (inst.fields_accumulated.empty() || inst.desc->rates_stage);
+    const bool at_centres = (inst.desc->flags & PLAB_MODEL_FORCE_AT_CENTRES) != 0;
     const std::uint32_t c0 = set_chunks_[si], c1 = set_chunks_[si + 1];
     int failed = 0;
     bool exceeded = false;
@@ -242,6 +244,13 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
         if (ch.hi >= ch.lo) std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * std::size_t(ch.hi - ch.lo + 1), 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
             const std::size_t m = std::min(kContactBatch, ch.end - o);
+            if (dense && at_centres) {  // SPH: no spin, moments, stiffness or energies
+                DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
+                exceeded |= pack_centre_rows(inst, si, o, o + m, d);
+                if (call_model_dense(inst, d, dim, last_dt, read_cols) != 0) failed = 1;
+                unpack_centre_rows(si, inst, d, o, ch);
+                continue;
+            }
             if (dense) {
                 DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
                 exceeded |= pack_ball_rows(inst, si, o, o + m, d);
@@ -500,6 +509,22 @@ void World::rates_stage() {
             accumulate(owner, s, k, en.row & end2_bit, i);
         }
     run_passes(PLAB_PHASE_RATES_DONE);
+}
+
+// A rates stage is needed when something reads what it sums: a pass (e.g.
+// sph_density_integration reads sph_drho_dt) or a model that declares one
+// of its accumulated fields. Otherwise the stage is skipped and those fields
+// keep their last values (zero): with summation density, SPH's continuity
+// sum feeds nothing, and skipping it halves the model's calls.
+bool World::rates_stage_needed(const ModelInstance& inst) const {
+    for (int f : inst.fields_accumulated) {
+        for (const PassInstance& p : passes_)
+            if (std::find(p.fields.begin(), p.fields.end(), f) != p.fields.end()) return true;
+        for (const auto& other : instances_)
+            if (std::find(other->fields_read.begin(), other->fields_read.end(), f) != other->fields_read.end())
+                return true;
+    }
+    return false;
 }
 
 // PFC's per-ball estimate; the reason names the model and group that set

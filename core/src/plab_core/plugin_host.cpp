@@ -6,6 +6,8 @@
 #include <boost/dll/shared_library.hpp>
 
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -110,6 +112,7 @@ std::vector<std::string> check_model_desc(const plab_contact_model_desc& d) {
     if (d.history_count > 0 && !d.history) bad.push_back("history_count > 0 but history is NULL");
     if (d.persist_slot < -1 || d.persist_slot >= int32_t(d.history_count))
         bad.push_back("persist_slot must be -1 or the index of a history slot");
+    if (d.flags & ~uint32_t(PLAB_MODEL_KNOWN_FLAGS)) bad.push_back("flags has bits this host does not know (abi.h PLAB_MODEL_*)");
     for (uint32_t i = 0; d.history && i < d.history_count; ++i) {
         if (!d.history[i].name || !*d.history[i].name) bad.push_back("history slot " + std::to_string(i) + " has no name");
         if (d.history[i].swap_rule > PLAB_SWAP_NEGATE)
@@ -201,6 +204,7 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
     LoadedLibrary entry;
     entry.path = path;
     loading_ = path;
+    loading_version_ = version;
     problems_.clear();
     const auto before_models = models_;
     const auto before_passes = passes_;
@@ -228,6 +232,11 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
 
 int PluginHost::register_model(const plab_contact_model_desc* d) {
     if (!d) { problems_.push_back("register_contact_model(NULL)"); return 1; }
+    if (loading_version_ < 4) {  // its description ends before `flags` (abi.h, version 4)
+        plab_contact_model_desc full{};
+        std::memcpy(&full, d, offsetof(plab_contact_model_desc, flags));
+        d = &upgraded_.emplace_back(full);
+    }
     auto bad = check_model_desc(*d);
     const std::string name = d->name ? d->name : "?";
     if (!bad.empty()) { problems_.push_back("model '" + name + "': " + join(bad, "; ")); return 1; }

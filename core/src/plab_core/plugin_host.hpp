@@ -5,6 +5,7 @@
 
 #include <plab/abi.h>
 
+#include <list>
 #include <map>
 #include <memory>
 #include <string>
@@ -64,6 +65,10 @@ private:
     std::map<std::string, std::string> model_lib_, pass_lib_;
     std::map<std::string, const plab_pass_state_hooks*> pass_state_;
     std::string loading_;               // library being initialised
+    std::uint32_t loading_version_ = 0; // its plug-in ABI version
+    // descriptions of plug-ins older than ABI 4, copied up to `flags` and
+    // completed with zeros (their own struct ends before it)
+    std::list<plab_contact_model_desc> upgraded_;
     std::vector<std::string> problems_; // registration problems of `loading_`
 };
 

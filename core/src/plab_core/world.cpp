@@ -308,9 +308,14 @@ void World::force_pass() {
         PhaseTimer t{phase_seconds[ph_force]};
         // without a rates stage, each set is done in one sweep over batches
         // (geometry, model, scatter to slots); a rates stage needs all the
-        // geometry before any force
+        // geometry before any force. A rates stage whose sums nothing reads
+        // is skipped (rates_stage_needed).
+        bool rates_models = false;
         swept_ = true;
-        for (auto& inst : instances_) swept_ &= !inst->desc->rates_stage;
+        for (auto& inst : instances_) {
+            rates_models |= inst->desc->rates_stage != 0;
+            swept_ &= !(inst->desc->rates_stage && rates_stage_needed(*inst));
+        }
         for (std::uint32_t si = 0; si < sets_.size(); ++si) {
             ModelInstance& inst = *instances_[si / 2];
             ContactSet& s = *sets_[si];
@@ -318,7 +323,15 @@ void World::force_pass() {
             geometry(inst, s);
             if (s.with_wall) resolve_wall_features(s);
         }
-        if (swept_) {
+        if (swept_ && rates_models) {
+            // the passes that turn rates into states (e.g. summation density,
+            // the EOS) still run before the forces, on this cycle's contacts
+            mark_ball_rows_in_range();
+            build_pass_contacts();
+            run_passes(PLAB_PHASE_RATES_DONE);
+            for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
+            in_range_marked_ = false;
+        } else if (swept_) {
             for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
             build_pass_contacts();  // the sweeps set the active flags
         } else {

@@ -30,7 +30,10 @@ struct ContactSet {
     // dense path (force_sweep) keep active, gap, normal and point up to date
     // for every reader; their distance, rel_velocity, rel_angular_velocity,
     // strain, slip, dashpot and break_energy columns are not written (the
-    // model gets them packed, dense_batch.hpp) and hold stale values.
+    // model gets them packed, dense_batch.hpp) and hold stale values. Those
+    // of a PLAB_MODEL_FORCE_AT_CENTRES model (centre_force_batch.cpp) write
+    // back force, point, normal and dt_limit only: moments, stiffness and
+    // energies stay zero.
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
     std::vector<double> radius1, radius2, mass1, mass2, eff_mass, eff_radius;
@@ -244,6 +247,7 @@ private:
     void build_chunks();
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
+    bool in_range_marked_ = false;   // mark_ball_rows_in_range() ran at the current positions
     void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end, const Chunk& chunk);
     void scatter_to_chunks(std::uint32_t set_index);
     void force_sweep(std::uint32_t set_index, bool with_geometry);
@@ -311,6 +315,11 @@ private:
                         DenseBatch& d);
     void unpack_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
                      const Chunk& chunk);
+    // the same for a model with PLAB_MODEL_FORCE_AT_CENTRES (centre_force_batch.cpp)
+    bool pack_centre_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end,
+                          DenseBatch& d);
+    void unpack_centre_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d,
+                            std::size_t begin, const Chunk& chunk);
     void write_back(double* column, std::size_t width, const double* dense, const DenseBatch& d, std::size_t begin,
                     std::size_t end, HeldOutputs& held, int which);
     int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
@@ -319,6 +328,8 @@ private:
     void resolve_wall_features(ContactSet& set);
     void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
     void rates_stage();
+    bool rates_stage_needed(const ModelInstance& inst) const;
+    void mark_ball_rows_in_range();
     void accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i);
     void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);

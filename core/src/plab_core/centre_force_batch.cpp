@@ -1,0 +1,131 @@
+// Packing and unpacking of ball–ball rows for a model whose pair force acts
+// between the particle centres (PLAB_MODEL_FORCE_AT_CENTRES, abi.h: SPH).
+// The dense batch of dense_batch.hpp without what such a model never uses:
+// no spin terms in the relative velocity, no moments r x F, no stiffness or
+// energy columns cleared or read back. The rows reach the model through the
+// same DenseBatch, bind_rows() and call_model_dense(); the force sums go to
+// the chunks' partials in row order, as unpack_rows() does, so results do
+// not depend on the thread count.
+#include "dense_batch.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace plab {
+
+namespace {
+inline void put(double* col, std::size_t a, const Vec& v) {
+    col[3 * a] = v.x(); col[3 * a + 1] = v.y(); col[3 * a + 2] = v.z();
+}
+inline void copy3(double* to, std::size_t k, const double* from, std::size_t a) {
+    to[3 * k] = from[3 * a]; to[3 * k + 1] = from[3 * a + 1]; to[3 * k + 2] = from[3 * a + 2];
+}
+} // namespace
+
+// Rows [begin, end) of ball–ball set si: the range test of every candidate
+// (as pack_ball_rows: gap and active flag kept in the set, history of a row
+// that left the range back to its defaults), then the rows in range packed
+// into d with the centres' relative velocity. True when an active contact
+// overlaps beyond the model's max_overlap.
+bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+                             DenseBatch& d) {
+    ContactSet& s = *sets_[si];
+    std::uint8_t* live = live_[si].data();
+    const RangeTest in_range(inst);
+    const std::size_t stride = std::size_t(inst.stride);
+    const auto& B = bodies;
+    std::uint32_t idle[kContactBatch];
+    std::size_t n_active = 0, n_idle = 0;
+    if (in_range_marked_) {  // mark_ball_rows_in_range() tested these positions: list its rows in range
+        for (std::size_t k = begin; k < end; ++k) {
+            const bool active = s.active[k] != 0;
+            d.row[n_active] = std::uint32_t(k);
+            idle[n_idle] = std::uint32_t(k);
+            n_active += active;
+            n_idle += !active & (live[k] != 0);
+            live[k] = active;
+        }
+        for (std::size_t a = 0; a < n_active; ++a) {  // the same arithmetic as the test
+            const std::size_t k = d.row[a];
+            const std::int32_t i = s.end1[k], j = s.end2[k];
+            d.distance[a] = (B.position[j] - B.position[i]).norm();
+            d.gap[a] = d.distance[a] - B.radius[i] - B.radius[j];
+        }
+    } else {
+        for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
+            const double dist = (B.position[s.end2[k]] - B.position[s.end1[k]]).norm();
+            const double gap = dist - s.radius1[k] - s.radius2[k];
+            const bool active = in_range(s.history, k, dist, gap);
+            s.gap[k] = gap;
+            s.active[k] = active;
+            d.gap[n_active] = gap;
+            d.distance[n_active] = dist;
+            d.row[n_active] = std::uint32_t(k);
+            idle[n_idle] = std::uint32_t(k);
+            n_active += active;
+            n_idle += !active & (live[k] != 0);
+            live[k] = active;
+        }
+    }
+    for (std::size_t r = 0; r < n_idle; ++r)
+        for (std::size_t h = 0; h < stride; ++h) s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
+    bool exceeded = false;
+    for (std::size_t a = 0; a < n_active; ++a) {
+        const std::size_t k = d.row[a];
+        const std::int32_t i = s.end1[k], j = s.end2[k];
+        // radii and masses from the bodies (in cache) rather than the set's
+        // long columns, with fill_pair_constants()'s arithmetic
+        const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
+        const double dist = d.distance[a], gap = d.gap[a];
+        const Vec normal = dist > 0 ? Vec((B.position[j] - B.position[i]) / dist) : Vec::UnitX();
+        d.end1[a] = i;
+        d.end2[a] = j;
+        put(d.normal, a, normal);
+        put(d.point, a, B.position[i] + normal * (ri + 0.5 * gap));  // for the readers (stress, outputs)
+        put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
+        put(d.rel_angular_velocity, a, Vec::Zero());
+        d.radius1[a] = ri;
+        d.radius2[a] = rj;
+        d.mass1[a] = mi;
+        d.mass2[a] = mj;
+        d.eff_mass[a] = mi * mj / (mi + mj);
+        d.eff_radius[a] = ri * rj / (ri + rj);
+        for (std::size_t h = 0; h < stride; ++h) d.history[a * stride + h] = s.history[k * stride + h];
+        exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
+    }
+    d.count = std::uint32_t(n_active);
+    // only the outputs the host reads start from zero (dt limit: no limit)
+    std::fill_n(d.force, 3 * n_active, 0.0);
+    std::fill_n(d.dt_limit, n_active, kInf);
+    return exceeded;
+}
+
+// Back from the packed rows of batch [begin, end): history, force, point,
+// normal and step limit to the set's columns (their readers: outputs,
+// stress, the stable step, checkpoints), and each row's force added, in row
+// order, to the chunk's partial sums: -F on end 1, +F on end 2, no moment.
+void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d,
+                               std::size_t begin, const Chunk& ch) {
+    ContactSet& s = *sets_[si];
+    const std::size_t stride = std::size_t(inst.stride);
+    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
+    const std::int32_t lo = ch.lo;
+    for (std::size_t a = 0; a < d.count; ++a) {
+        const std::size_t k = d.row[a];
+        for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = d.history[a * stride + h];
+        copy3(s.force.data(), k, d.force, a);
+        copy3(s.point.data(), k, d.point, a);
+        copy3(s.normal.data(), k, d.normal, a);
+        double* f1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
+        double* f2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
+        for (int c = 0; c < 3; ++c) {
+            f1[c] -= d.force[3 * a + c];
+            f2[c] += d.force[3 * a + c];
+        }
+    }
+    // (the batch's energy sums stay zero: force_sweep cleared them)
+    HeldOutputs& held = held_[si][begin / kContactBatch];
+    write_back(s.dt_limit.data(), 1, d.dt_limit, d, begin, std::min(s.size(), begin + kContactBatch), held, 4);
+}
+
+} // namespace plab
