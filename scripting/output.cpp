@@ -81,7 +81,7 @@ std::string balls_vtp(const World& w) {
     v.array("angular_velocity", 3, flatten(b.angular_velocity));
     v.array("force", 3, flatten(b.force));
     for (std::size_t f = 0; f < w.field_names().size(); ++f)
-        v.array(w.field_names()[f], 1, const_cast<World&>(w).field(int(f)));
+        if (w.field_computed(int(f))) v.array(w.field_names()[f], 1, const_cast<World&>(w).field(int(f)));
     std::vector<double> stress;  // per-ball average stress, tension positive (row-major 3x3)
     stress.reserve(9 * b.size());
     for (const auto& sigma : w.ball_stress())

@@ -106,7 +106,8 @@ std::vector<double> snapshot_view(const World& w) {
 std::vector<std::string> snapshot_field_names(const World& w) {
     std::vector<std::string> names = {"velocity", "force", "group", "id", "stress_xx", "stress_yy", "stress_xy",
                                       "mean_stress", "broken_bonds"};
-    for (const auto& f : w.field_names()) names.push_back(f);
+    for (std::size_t f = 0; f < w.field_names().size(); ++f)
+        if (w.field_computed(int(f))) names.push_back(w.field_names()[f]);
     return names;
 }
 

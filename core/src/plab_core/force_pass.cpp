@@ -516,6 +516,17 @@ void World::rates_stage() {
 // of its accumulated fields. Otherwise the stage is skipped and those fields
 // keep their last values (zero): with summation density, SPH's continuity
 // sum feeds nothing, and skipping it halves the model's calls.
+bool World::field_computed(int f) const {
+    bool skipped = true, filled_by_rates = false;  // the rates stage runs for all or none (step())
+    for (const auto& inst : instances_) {
+        if (!inst->desc->rates_stage) continue;
+        skipped &= !rates_stage_needed(*inst);
+        const auto& acc = inst->fields_accumulated;
+        filled_by_rates |= std::find(acc.begin(), acc.end(), f) != acc.end();
+    }
+    return !(skipped && filled_by_rates);
+}
+
 bool World::rates_stage_needed(const ModelInstance& inst) const {
     for (int f : inst.fields_accumulated) {
         for (const PassInstance& p : passes_)

@@ -143,6 +143,10 @@ public:
     int register_field(const std::string& name, double default_value);
     std::vector<double>& field(int index) { return fields_[index]; }
     const std::vector<std::string>& field_names() const { return field_names_; }
+    // False for a field that only a skipped rates stage would fill (no pass
+    // or model reads it, rates_stage_needed): it holds zeros, so outputs
+    // leave it out rather than write zeros as if they were values.
+    bool field_computed(int f) const;
 
     void add_pass(const std::string& name, std::vector<double> props);
 
