@@ -33,7 +33,12 @@ struct ContactSet {
     // model gets them packed, dense_batch.hpp) and hold stale values. Those
     // of a PLAB_MODEL_FORCE_AT_CENTRES model (centre_force_batch.cpp) write
     // back force, point, normal and dt_limit only: moments, stiffness and
-    // energies stay zero.
+    // energies stay zero. A `packed` set (World::packs_balls: dense, and no
+    // model of the world has a rates stage that could read the full
+    // columns) does not even allocate distance, rel_velocity,
+    // rel_angular_velocity, mass1, mass2, eff_mass, eff_radius, strain,
+    // slip, dashpot and break_energy (empty): ~120 B per row.
+    bool packed = false;
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
     std::vector<double> radius1, radius2, mass1, mass2, eff_mass, eff_radius;
@@ -311,6 +316,9 @@ private:
     void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs);
     void build_entries();
     void fill_pair_constants(ContactSet& set) const;
+    // whether the ball–ball rows of a model go to it packed (force_sweep): no
+    // model of the world has a rates stage and this one accumulates no field
+    bool packs_balls(const ModelInstance& inst) const;
     bool displacement_exceeds_skin() const;
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
