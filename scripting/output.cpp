@@ -111,7 +111,7 @@ std::string contacts_vtp(const World& w) {
             v.conn << 2 * v.n_cells << ' ' << 2 * v.n_cells + 1 << ' ';
             ++v.n_cells;
             v.offsets << 2 * v.n_cells << ' ';
-            const Vec f(&s.force[3 * k]), n(&s.normal[3 * k]);
+            const Vec f(&s.force[3 * k]), n = w.contact_normal(s, k);
             force.insert(force.end(), {f.x(), f.y(), f.z()});
             normal_force.push_back(f.dot(n));
         }

@@ -16,17 +16,16 @@ namespace plab {
 void ContactSet::resize_columns(std::size_t n, int n_acc) {
     active.assign(n, 0);
     interior.assign(with_wall ? n : 0, 1);
-    for (auto* v : {&normal, &rel_velocity, &rel_angular_velocity, &point, &force, &moment1, &moment2})
-        v->assign(3 * n, 0.0);
+    for (auto* v : {&force, &moment1, &moment2}) v->assign(3 * n, 0.0);
     for (auto* v : {&gap, &radius1, &radius2, &k_t, &k_r, &dt_limit}) v->assign(n, 0.0);
     // what only the model reads, or only per-batch sums need: none when packed
     const std::size_t m = packed ? 0 : n;
-    for (auto* v : {&rel_velocity, &rel_angular_velocity}) v->assign(3 * m, 0.0);
+    for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) v->assign(3 * m, 0.0);
     for (auto* v : {&distance, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot, &break_energy}) {
         v->assign(m, 0.0);
         v->shrink_to_fit();
     }
-    for (auto* v : {&rel_velocity, &rel_angular_velocity}) v->shrink_to_fit();
+    for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) v->shrink_to_fit();
     acc1.assign(n_acc, std::vector<double>(n, 0.0));
     acc2.assign(n_acc, std::vector<double>(n, 0.0));
 }

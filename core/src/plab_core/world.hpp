@@ -37,7 +37,9 @@ struct ContactSet {
     // model of the world has a rates stage that could read the full
     // columns) does not even allocate distance, rel_velocity,
     // rel_angular_velocity, mass1, mass2, eff_mass, eff_radius, strain,
-    // slip, dashpot and break_energy (empty): ~120 B per row.
+    // slip, dashpot and break_energy, nor normal and point: readers
+    // recompute those two from the positions and the gap
+    // (World::contact_normal/contact_point). ~170 B per row less.
     bool packed = false;
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
@@ -198,6 +200,12 @@ public:
     std::vector<Eigen::Matrix3d> ball_stress() const;
     double unbalanced_force_ratio() const;  // mean unbalanced / mean contact force
     std::size_t active_contacts() const;
+    // Normal (end 1 to end 2) and contact point of row k of a set at the
+    // last force pass: a packed set's are recomputed from the positions and
+    // the gap with the force pass's arithmetic (the same bits, as long as no
+    // ball moved since), any other set's are read from its columns.
+    Vec contact_normal(const ContactSet& s, std::size_t k) const;
+    Vec contact_point(const ContactSet& s, std::size_t k) const;
     std::uint64_t state_hash() const;       // FNV-1a over positions, velocities, spins
     std::array<double, ph_count> phase_seconds{};
     std::uint64_t rebuilds = 0;
