@@ -365,9 +365,15 @@ void World::sum_stiffness() const {
                 const ContactSet& s = *sets_[entries_[e].set];
                 const std::uint32_t k = entries_[e].row & ~end2_bit;
                 if (!s.active[k]) continue;
-                const Vec arm = contact_point(s, k) - bodies.position[i];
+                double arm2;
+                if (s.packed) {  // the contact point lies on the normal, its radius + half the gap from each centre
+                    const double arm = ((entries_[e].row & end2_bit) ? s.radius2[k] : s.radius1[k]) + 0.5 * s.gap[k];
+                    arm2 = arm * arm;
+                } else {
+                    arm2 = (Vec(&s.point[3 * k]) - bodies.position[i]).squaredNorm();
+                }
                 kt += s.k_t[k];
-                kr += s.k_r[k] + s.k_t[k] * arm.squaredNorm();
+                kr += s.k_r[k] + s.k_t[k] * arm2;
             }
             k_trans_[i] = kt;
             k_rot_[i] = kr;
