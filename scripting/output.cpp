@@ -111,7 +111,7 @@ std::string contacts_vtp(const World& w) {
             v.conn << 2 * v.n_cells << ' ' << 2 * v.n_cells + 1 << ' ';
             ++v.n_cells;
             v.offsets << 2 * v.n_cells << ' ';
-            const Vec f(&s.force[3 * k]), n(&s.normal[3 * k]);
+            const Vec f(&s.force[3 * k]), n = w.contact_normal(s, k);
             force.insert(force.end(), {f.x(), f.y(), f.z()});
             normal_force.push_back(f.dot(n));
         }
@@ -159,7 +159,8 @@ std::string walls_vtp(const World& w) {
 // What makes a model expensive (issue 7): its contacts, the neighbours per
 // body, and the stable step its contacts allow on their own (one contact:
 // sqrt(m/k) of the lighter end, or the model's direct step limit).
-json cost_drivers(const ModelInstance& inst, std::size_t bodies) {
+json cost_drivers(const ModelInstance& inst, const Bodies& B) {
+    const std::size_t bodies = B.size();
     std::size_t active = 0, ball_active = 0;
     double stable = kInf;
     for (const ContactSet* s : {&inst.balls, &inst.walls})
@@ -167,7 +168,8 @@ json cost_drivers(const ModelInstance& inst, std::size_t bodies) {
             if (!s->active[k]) continue;
             ++active;
             ball_active += !s->with_wall;
-            const double m = std::min(s->mass1[k], s->mass2[k]);
+            // masses from the bodies: a packed set keeps no mass columns (a wall's is infinite)
+            const double m = s->with_wall ? B.mass[s->end1[k]] : std::min(B.mass[s->end1[k]], B.mass[s->end2[k]]);
             if (s->k_t[k] > 0) stable = std::min(stable, std::sqrt(m / s->k_t[k]));
             stable = std::min(stable, s->dt_limit[k]);
         }
@@ -228,7 +230,7 @@ json Simulation::summary() const {
     for (int p = 0; p < ph_count; ++p) phases[phase_names[p]] = w.phase_seconds[p];
     s["phase_seconds"] = phases;
     json models = json::array();
-    for (const auto& inst : w.instances()) models.push_back(cost_drivers(*inst, w.bodies.size()));
+    for (const auto& inst : w.instances()) models.push_back(cost_drivers(*inst, w.bodies));
     s["models"] = models;
     if (!w.stopped.quantity.empty()) {
         const Diagnostic& d = w.stopped;

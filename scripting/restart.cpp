@@ -106,8 +106,9 @@ void Simulation::keep_last_good() {
     const World& w = *world_;
     if (out_dir_.empty() || w.snapshot_interval == 0) return;
     if (last_good_.empty() || w.step_count % w.snapshot_interval == 0) {
+        const std::size_t size = last_good_.size();
         std::string().swap(last_good_);  // free the old copy first: only one is held at a time
-        last_good_ = checkpoint_bytes();
+        last_good_ = checkpoint_bytes(size + size / 8);
     }
 }
 
@@ -117,8 +118,9 @@ std::string Simulation::write_last_good() const {
     return last_good_path();
 }
 
-std::string Simulation::checkpoint_bytes() const {
+std::string Simulation::checkpoint_bytes(std::size_t size_hint) const {
     CheckpointWriter out;
+    out.reserve(size_hint);
     const auto used = plugins_used(scene_, scene_dir_, *host_, *world_);
     out.section("plugins");
     out.u64(used.size());

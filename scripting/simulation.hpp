@@ -137,7 +137,9 @@ private:
     bool resumed_ = false, interrupted_ = false;
     bool run_command(const Command& c);  // false: stopped by a signal before it completed
     std::string last_good_;  // checkpoint bytes of the last good state (runs with outputs)
-    std::string checkpoint_bytes() const;
+    // `size_hint`: bytes to reserve (the last copy's size): a buffer grown by
+    // doubling would need up to three times the checkpoint at its peak
+    std::string checkpoint_bytes(std::size_t size_hint = 0) const;
     std::string last_good_path() const;
     void keep_last_good();
     std::string write_last_good() const;  // its path, or "" when none is kept

@@ -160,8 +160,9 @@ Cantilever static_cantilever(double r, double load, double ratio, const Strength
         worst_shear = std::max(worst_shear, tau / tau_c);
         if (std::max(sigma / sigma_c, tau / tau_c) > worst) {
             worst = std::max(sigma / sigma_c, tau / tau_c);
-            out.break_x = s.point[3 * k];
-            out.break_y = s.point[3 * k + 1];
+            const Vec point = w.contact_point(s, k);
+            out.break_x = point.x();
+            out.break_y = point.y();
             out.break_in_tension = sigma / sigma_c >= tau / tau_c;
         }
     }

@@ -246,6 +246,7 @@ void load_set(const ModelInstance& inst, ContactSet& s, const std::vector<int>& 
         std::vector<double> values = in.column<double>();
         for (auto& [known, col] : cols)
             if (name == known) {
+                if (col->empty() && s.packed) break;  // a column a packed set does not keep
                 if (values.size() != col->size()) in.fail("contact column '" + name + "' has the wrong length");
                 *col = std::move(values);
             }
@@ -434,6 +435,7 @@ void WorldCheckpoint::load_contacts(World& w, CheckpointReader& in) {
                         "); the contact history it holds would be lost — restart with the plug-in that wrote it");
             slot_of_file.push_back(found);
         }
+        inst->balls.packed = w.packs_balls(*inst);
         load_set(*inst, inst->balls, slot_of_file, in);
         load_set(*inst, inst->walls, slot_of_file, in);
         for (const ContactSet* s : {&inst->balls, &inst->walls})

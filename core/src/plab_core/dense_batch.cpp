@@ -111,6 +111,20 @@ void World::mark_ball_rows_in_range() {
     in_range_marked_ = true;
 }
 
+Vec World::contact_normal(const ContactSet& s, std::size_t k) const {
+    if (!s.packed) return Vec(&s.normal[3 * k]);
+    const std::int32_t i = s.end1[k], j = s.end2[k];
+    const double dist = (bodies.position[j] - bodies.position[i]).norm();  // as pack_ball_rows()
+    return ball_pair_kinematics(bodies, i, j, s.radius1[k], dist, s.gap[k]).normal;
+}
+
+Vec World::contact_point(const ContactSet& s, std::size_t k) const {
+    if (!s.packed) return Vec(&s.point[3 * k]);
+    const std::int32_t i = s.end1[k], j = s.end2[k];
+    const double dist = (bodies.position[j] - bodies.position[i]).norm();
+    return ball_pair_kinematics(bodies, i, j, s.radius1[k], dist, s.gap[k]).point;
+}
+
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols) {
     if (d.count == 0) return 0;
     plab_contact_batch batch{};
@@ -132,9 +146,9 @@ int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double d
 }
 
 // Back from the packed rows of batch [begin, end): history, and what the
-// readers of the contact columns use (force, moments, point, normal,
-// stiffnesses, step limit: outputs, stress, stable step, bond breaks,
-// checkpoints); then each row's force and moments added to the chunk's partial
+// readers of the contact columns use (force, moments, stiffnesses, step
+// limit: outputs, stress, stable step, bond breaks, checkpoints; normal and
+// point they recompute, World::contact_point); then each row's force and moments added to the chunk's partial
 // sums, and the batch's energy sums, as scatter_rows() does for full columns.
 void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
                         const Chunk& ch) {
@@ -148,8 +162,10 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
         const std::size_t k = d.row[a];
         for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = d.history[a * stride + h];
         copy3(s.force.data(), k, d.force, a);
-        copy3(s.point.data(), k, d.point, a);
-        copy3(s.normal.data(), k, d.normal, a);
+        if (!s.packed) {  // a packed set recomputes them on demand (contact_point())
+            copy3(s.point.data(), k, d.point, a);
+            copy3(s.normal.data(), k, d.normal, a);
+        }
         strain += d.strain[a];
         slip += d.slip[a];
         dashpot += d.dashpot[a];

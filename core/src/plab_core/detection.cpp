@@ -16,11 +16,16 @@ namespace plab {
 void ContactSet::resize_columns(std::size_t n, int n_acc) {
     active.assign(n, 0);
     interior.assign(with_wall ? n : 0, 1);
-    for (auto* v : {&normal, &rel_velocity, &rel_angular_velocity, &point, &force, &moment1, &moment2})
-        v->assign(3 * n, 0.0);
-    for (auto* v : {&gap, &distance, &radius1, &radius2, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip,
-                    &dashpot, &k_t, &k_r, &dt_limit, &break_energy})
-        v->assign(n, 0.0);
+    for (auto* v : {&force, &moment1, &moment2}) v->assign(3 * n, 0.0);
+    for (auto* v : {&gap, &radius1, &radius2, &k_t, &k_r, &dt_limit}) v->assign(n, 0.0);
+    // what only the model reads, or only per-batch sums need: none when packed
+    const std::size_t m = packed ? 0 : n;
+    for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) v->assign(3 * m, 0.0);
+    for (auto* v : {&distance, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot, &break_energy}) {
+        v->assign(m, 0.0);
+        v->shrink_to_fit();
+    }
+    for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) v->shrink_to_fit();
     acc1.assign(n_acc, std::vector<double>(n, 0.0));
     acc2.assign(n_acc, std::vector<double>(n, 0.0));
 }
@@ -182,6 +187,7 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     set.key1 = std::move(nk1);
     set.key2 = std::move(nk2);
     set.history = std::move(history);
+    set.packed = !set.with_wall && packs_balls(inst);
     set.resize_columns(n_unique, int(inst.fields_accumulated.size()));
     fill_pair_constants(set);
 }
@@ -189,6 +195,13 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
 // Radii and masses of the two ends are constant while a candidate list lives
 // (a change of bodies marks the world dirty), so these batch columns are
 // filled when the list is made or loaded, not in every step's geometry.
+bool World::packs_balls(const ModelInstance& inst) const {
+    for (const auto& other : instances_)
+        if (other->desc->rates_stage) return false;
+    // (the centre-force path writes point and normal back: it keeps them)
+    return inst.fields_accumulated.empty() && !(inst.desc->flags & PLAB_MODEL_FORCE_AT_CENTRES);
+}
+
 void World::fill_pair_constants(ContactSet& set) const {
     for (std::size_t r = 0; r < set.size(); ++r) {
         const std::int32_t i = set.end1[r], j = set.end2[r];
@@ -196,6 +209,7 @@ void World::fill_pair_constants(ContactSet& set) const {
         const double rj = set.with_wall ? 0.0 : bodies.radius[j], mj = set.with_wall ? kInf : bodies.mass[j];
         set.radius1[r] = ri;
         set.radius2[r] = rj;
+        if (set.packed) continue;  // the masses go to the model packed, from the bodies
         set.mass1[r] = mi;
         set.mass2[r] = mj;
         set.eff_mass[r] = set.with_wall ? mi : mi * mj / (mi + mj);  // a wall has infinite mass

@@ -280,7 +280,7 @@ void World::record_breaks(ModelInstance& inst, ContactSet& s) {
         b.time = time;
         b.id1 = s.key1[k];
         b.id2 = s.key2[k];
-        b.point = Vec(&s.point[3 * k]);
+        b.point = contact_point(s, k);
         b.mode = int(-state);
         b.model = inst.model;
         bond_breaks.push_back(b);
@@ -365,9 +365,15 @@ void World::sum_stiffness() const {
                 const ContactSet& s = *sets_[entries_[e].set];
                 const std::uint32_t k = entries_[e].row & ~end2_bit;
                 if (!s.active[k]) continue;
-                const Vec arm = Vec(&s.point[3 * k]) - bodies.position[i];
+                double arm2;
+                if (s.packed) {  // the contact point lies on the normal, its radius + half the gap from each centre
+                    const double arm = ((entries_[e].row & end2_bit) ? s.radius2[k] : s.radius1[k]) + 0.5 * s.gap[k];
+                    arm2 = arm * arm;
+                } else {
+                    arm2 = (Vec(&s.point[3 * k]) - bodies.position[i]).squaredNorm();
+                }
                 kt += s.k_t[k];
-                kr += s.k_r[k] + s.k_t[k] * arm.squaredNorm();
+                kr += s.k_r[k] + s.k_t[k] * arm2;
             }
             k_trans_[i] = kt;
             k_rot_[i] = kr;
@@ -612,7 +618,7 @@ std::vector<Eigen::Matrix3d> World::ball_stress() const {
         for (const ContactSet* s : {&inst->balls, &inst->walls})
             for (std::size_t k = 0; k < s->size(); ++k) {
                 if (!s->active[k]) continue;
-                const Vec f2(&s->force[3 * k]), p(&s->point[3 * k]);
+                const Vec f2(&s->force[3 * k]), p = contact_point(*s, k);
                 const int i = s->end1[k];
                 sigma[i] += (p - bodies.position[i]) * (-f2).transpose();
                 if (!s->with_wall) {

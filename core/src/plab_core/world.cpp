@@ -254,6 +254,7 @@ void World::restore_snapshot() {
         for (ContactSet* c : {&inst->balls, &inst->walls}) {
             const SetState& st = s.sets[k++];
             c->end1 = st.end1; c->end2 = st.end2; c->key1 = st.key1; c->key2 = st.key2; c->history = st.history;
+            c->packed = !c->with_wall && packs_balls(*inst);
             c->resize_columns(c->end1.size(), int(inst->fields_accumulated.size()));
         }
     mark_dirty();

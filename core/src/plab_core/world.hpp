@@ -33,7 +33,14 @@ struct ContactSet {
     // model gets them packed, dense_batch.hpp) and hold stale values. Those
     // of a PLAB_MODEL_FORCE_AT_CENTRES model (centre_force_batch.cpp) write
     // back force, point, normal and dt_limit only: moments, stiffness and
-    // energies stay zero.
+    // energies stay zero. A `packed` set (World::packs_balls: dense, and no
+    // model of the world has a rates stage that could read the full
+    // columns) does not even allocate distance, rel_velocity,
+    // rel_angular_velocity, mass1, mass2, eff_mass, eff_radius, strain,
+    // slip, dashpot and break_energy, nor normal and point: readers
+    // recompute those two from the positions and the gap
+    // (World::contact_normal/contact_point). ~170 B per row less.
+    bool packed = false;
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
     std::vector<double> radius1, radius2, mass1, mass2, eff_mass, eff_radius;
@@ -193,6 +200,12 @@ public:
     std::vector<Eigen::Matrix3d> ball_stress() const;
     double unbalanced_force_ratio() const;  // mean unbalanced / mean contact force
     std::size_t active_contacts() const;
+    // Normal (end 1 to end 2) and contact point of row k of a set at the
+    // last force pass: a packed set's are recomputed from the positions and
+    // the gap with the force pass's arithmetic (the same bits, as long as no
+    // ball moved since), any other set's are read from its columns.
+    Vec contact_normal(const ContactSet& s, std::size_t k) const;
+    Vec contact_point(const ContactSet& s, std::size_t k) const;
     std::uint64_t state_hash() const;       // FNV-1a over positions, velocities, spins
     std::array<double, ph_count> phase_seconds{};
     std::uint64_t rebuilds = 0;
@@ -311,6 +324,9 @@ private:
     void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs);
     void build_entries();
     void fill_pair_constants(ContactSet& set) const;
+    // whether the ball–ball rows of a model go to it packed (force_sweep): no
+    // model of the world has a rates stage and this one accumulates no field
+    bool packs_balls(const ModelInstance& inst) const;
     bool displacement_exceeds_skin() const;
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
