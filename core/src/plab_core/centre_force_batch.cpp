@@ -13,25 +13,14 @@
 
 namespace plab {
 
-namespace {
-inline void put(double* col, std::size_t a, const Vec& v) {
-    col[3 * a] = v.x(); col[3 * a + 1] = v.y(); col[3 * a + 2] = v.z();
-}
-inline void copy3(double* to, std::size_t k, const double* from, std::size_t a) {
-    to[3 * k] = from[3 * a]; to[3 * k + 1] = from[3 * a + 1]; to[3 * k + 2] = from[3 * a + 2];
-}
-} // namespace
-
-// Rows [begin, end) of ball–ball set si: the range test of every candidate
-// (as pack_ball_rows: gap and active flag kept in the set, history of a row
-// that left the range back to its defaults), then the rows in range packed
+// Rows [begin, end) of ball–ball set si: the range test (range_test_rows(),
+// or the flags mark_ball_rows_in_range() set this cycle), then the rows in range packed
 // into d with the centres' relative velocity. True when an active contact
 // overlaps beyond the model's max_overlap.
 bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                              DenseBatch& d) {
     ContactSet& s = *sets_[si];
     std::uint8_t* live = live_[si].data();
-    const RangeTest in_range(inst);
     const std::size_t stride = std::size_t(inst.stride);
     const auto& B = bodies;
     std::uint32_t idle[kContactBatch];
@@ -51,24 +40,12 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
             d.distance[a] = (B.position[j] - B.position[i]).norm();
             d.gap[a] = d.distance[a] - B.radius[i] - B.radius[j];
         }
+        for (std::size_t r = 0; r < n_idle; ++r)
+            for (std::size_t h = 0; h < stride; ++h)
+                s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
     } else {
-        for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
-            const double dist = (B.position[s.end2[k]] - B.position[s.end1[k]]).norm();
-            const double gap = dist - s.radius1[k] - s.radius2[k];
-            const bool active = in_range(s.history, k, dist, gap);
-            s.gap[k] = gap;
-            s.active[k] = active;
-            d.gap[n_active] = gap;
-            d.distance[n_active] = dist;
-            d.row[n_active] = std::uint32_t(k);
-            idle[n_idle] = std::uint32_t(k);
-            n_active += active;
-            n_idle += !active & (live[k] != 0);
-            live[k] = active;
-        }
+        n_active = range_test_rows(inst, si, begin, end, d);
     }
-    for (std::size_t r = 0; r < n_idle; ++r)
-        for (std::size_t h = 0; h < stride; ++h) s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
     bool exceeded = false;
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];

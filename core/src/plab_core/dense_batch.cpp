@@ -11,12 +11,6 @@
 namespace plab {
 
 namespace {
-inline void put(double* col, std::size_t a, const Vec& v) {
-    col[3 * a] = v.x(); col[3 * a + 1] = v.y(); col[3 * a + 2] = v.z();
-}
-inline void copy3(double* to, std::size_t k, const double* from, std::size_t a) {
-    to[3 * k] = from[3 * a]; to[3 * k + 1] = from[3 * a + 1]; to[3 * k + 2] = from[3 * a + 2];
-}
 inline std::uint64_t bits(double v) {
     std::uint64_t b;
     std::memcpy(&b, &v, sizeof b);
@@ -24,15 +18,14 @@ inline std::uint64_t bits(double v) {
 }
 } // namespace
 
-// Rows [begin, end): the range test of every candidate (gap, distance and
-// the active flag stay in the set's columns, for every reader), the history
-// of rows that left the range back to its declared defaults (a separated
-// contact is forgotten, as the adapter's batch loop did; a row that stays
-// out of range keeps them), and the geometry of the rows
-// in range packed into d. True when an active contact overlaps beyond its
-// model's max_overlap.
-bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
-                           DenseBatch& d) {
+// Rows [begin, end): the range test of every candidate (gap and the active
+// flag stay in the set's columns, for every reader), the rows in range listed
+// in d.row with their gap and centre distance, and the history of rows that
+// left the range back to its declared defaults (a separated contact is
+// forgotten, as the adapter's batch loop did; a row that stays out of range
+// keeps them). Returns how many rows are in range.
+std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+                                   DenseBatch& d) {
     ContactSet& s = *sets_[si];
     std::uint8_t* live = live_[si].data();
     const RangeTest in_range(inst);
@@ -57,6 +50,18 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
     }
     for (std::size_t r = 0; r < n_idle; ++r)
         for (std::size_t h = 0; h < stride; ++h) s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
+    return n_active;
+}
+
+// The range test (range_test_rows), then the geometry of the rows in range
+// packed into d. True when an active contact overlaps beyond its model's
+// max_overlap.
+bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+                           DenseBatch& d) {
+    const std::size_t n_active = range_test_rows(inst, si, begin, end, d);
+    const ContactSet& s = *sets_[si];
+    const std::size_t stride = std::size_t(inst.stride);
+    const auto& B = bodies;
     bool exceeded = false;
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];

@@ -48,6 +48,14 @@ struct DenseBatch {
     }
 };
 
+// A vector into row a of a 3-wide column, and row a of one into row k of another.
+inline void put(double* col, std::size_t a, const Vec& v) {
+    col[3 * a] = v.x(); col[3 * a + 1] = v.y(); col[3 * a + 2] = v.z();
+}
+inline void copy3(double* to, std::size_t k, const double* from, std::size_t a) {
+    to[3 * k] = from[3 * a]; to[3 * k + 1] = from[3 * a + 1]; to[3 * k + 2] = from[3 * a + 2];
+}
+
 // Whether a ball–ball candidate is in its model's range: bonded rows always
 // are; otherwise the gap or the centre distance, as the model declares.
 struct RangeTest {

@@ -331,6 +331,8 @@ private:
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
+    std::size_t range_test_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin,
+                                std::size_t end, DenseBatch& d);
     bool pack_ball_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end,
                         DenseBatch& d);
     void unpack_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
