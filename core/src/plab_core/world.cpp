@@ -257,6 +257,11 @@ void World::restore_snapshot() {
             c->packed = !c->with_wall && packs_balls(*inst);
             c->resize_columns(c->end1.size(), int(inst->fields_accumulated.size()));
         }
+    // the per-body row lists must name the restored rows, not those of the
+    // state that failed (a reader such as stable_timestep() walks them before
+    // the next step rebuilds); the restored rows carry no stiffness yet
+    build_entries();
+    stiffness_valid_ = false;
     mark_dirty();
 }
 
