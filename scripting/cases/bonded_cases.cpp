@@ -256,8 +256,10 @@ PLAB_VALIDATION_CASE("cantilever",
                      [](bool quick) {
     // 2 % for the 7-row beam and finer; the 3-row quick beam is coarse: 6 %
     CaseResult result{0, quick ? 0.06 : 0.02,
-                      "max relative error of the tip deflection vs the equivalent beam (first-break load reported; "
-                      "judged by cantilever_failure)",
+                      quick ? "relative error of the tip deflection vs the equivalent beam, R = 1 mm (first-break load "
+                              "reported; judged by cantilever_failure)"
+                            : "max relative error of the tip deflection vs the equivalent beam, R = 0.5 mm at three "
+                              "loads and R = 0.25 mm (R = 1 mm reported; first-break load judged by cantilever_failure)",
                       ""};
     const double ratio = quick ? 1e-5 : 1e-7;
     char line[400];
@@ -269,7 +271,9 @@ PLAB_VALIDATION_CASE("cantilever",
         const Cantilever c = static_cantilever(r, load, ratio);
         const double err = (c.deflection - c.analytical_equivalent) / c.analytical_equivalent;
         const double err_nominal = (c.deflection - c.analytical) / c.analytical;
-        result.error = std::max(result.error, std::fabs(err));
+        // judged: case 1 (R = 0.5 mm) and the finer beam; the issue's
+        // resolution study asks for R = 1 mm's error to be reported
+        if (quick || r <= 0.0005 + 1e-12) result.error = std::max(result.error, std::fabs(err));
         std::snprintf(line, sizeof line,
                       "    R %.2g mm, %d rows, %ld balls, P %5.0f N: tip deflection %.6g m; equivalent beam (L %.5f, h "
                       "%.6f) %.6g m, error %+.2f %%; nominal (L 0.201, h %.6f) %.6g m, error %+.2f %%; %ld steps, "
