@@ -10,6 +10,7 @@
 #include "world.hpp"
 
 #include <iterator>
+#include <limits>
 #include <memory>
 
 namespace plab {
@@ -38,6 +39,28 @@ struct DenseBatch {
     DenseBatch() {
         std::fill_n(active, N, std::uint8_t(1));
         std::fill_n(discard_columns, kMaxDiscarded, &discarded[0]);
+    }
+    // The optional inputs (PLAB_IO_*) a model does not read are not packed:
+    // their columns hold NaN instead, so a law that reads one anyway gives a
+    // non-finite force, which the host reports by model name. `poisoned`
+    // marks the columns that hold NaN in every row; one scene usually has
+    // one model per batch kind, so the NaN are written once.
+    std::uint32_t poisoned = 0;
+    void poison_unread(const ModelInstance& inst) {
+        const struct { std::uint32_t bit; double* cols[2]; std::size_t width; } inputs[] = {
+            {PLAB_IO_REL_ANGULAR_VELOCITY, {rel_angular_velocity, nullptr}, 3},
+            {PLAB_IO_RADII, {radius1, radius2}, 1},
+            {PLAB_IO_MASSES, {mass1, mass2}, 1},
+            {PLAB_IO_EFF_MASS, {eff_mass, nullptr}, 1},
+            {PLAB_IO_EFF_RADIUS, {eff_radius, nullptr}, 1},
+        };
+        for (const auto& in : inputs) {
+            if (inst.uses(in.bit)) { poisoned &= ~in.bit; continue; }
+            if (poisoned & in.bit) continue;
+            for (double* c : in.cols)
+                if (c) std::fill_n(c, in.width * N, std::numeric_limits<double>::quiet_NaN());
+            poisoned |= in.bit;
+        }
     }
     // this thread's scratch: allocated on its first use, then reused every cycle
     static DenseBatch& for_this_thread(std::size_t history_stride) {
