@@ -54,7 +54,7 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         // long columns, with fill_pair_constants()'s arithmetic
         const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
         const double dist = d.distance[a], gap = d.gap[a];
-        const Vec normal = dist > 0 ? Vec((B.position[j] - B.position[i]) / dist) : Vec::UnitX();
+        const Vec normal = centre_normal(B.position[i], B.position[j], dist);
         d.end1[a] = i;
         d.end2[a] = j;
         put(d.normal, a, normal);

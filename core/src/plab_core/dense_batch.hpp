@@ -101,11 +101,16 @@ struct RangeTest {
 struct PairKinematics {
     Vec normal, point, rel_velocity, rel_angular_velocity;
 };
+// The unit vector from xi to xj at centre distance dist: one division, not
+// three (every ball–ball path takes it from here, so all give the same bits).
+inline Vec centre_normal(const Vec& xi, const Vec& xj, double dist) {
+    return dist > 0 ? Vec((xj - xi) * (1.0 / dist)) : Vec::UnitX();
+}
 inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
                                            double gap) {
     const Vec& xi = B.position[i];
     PairKinematics p;
-    p.normal = dist > 0 ? Vec((B.position[j] - xi) / dist) : Vec::UnitX();
+    p.normal = centre_normal(xi, B.position[j], dist);
     p.point = xi + p.normal * (ri + 0.5 * gap);
     const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(p.point - B.position[j]);
     const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(p.point - xi);
