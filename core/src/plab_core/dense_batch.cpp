@@ -27,19 +27,23 @@ inline std::uint64_t bits(double v) {
 std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                                    DenseBatch& d) {
     ContactSet& s = *sets_[si];
-    std::uint8_t* live = live_[si].data();
     const RangeTest in_range(inst);
     const std::size_t stride = std::size_t(inst.stride);
-    const auto& B = bodies;
+    // raw pointers: the byte stores below (flags) may alias anything, so
+    // the compiler would otherwise reload every column's address per row
+    const std::int32_t *end1 = s.end1.data(), *end2 = s.end2.data();
+    const double *r1 = s.radius1.data(), *r2 = s.radius2.data(), *history = s.history.data();
+    const Vec* x = bodies.position.data();
+    double* gap_col = s.gap.data();
+    std::uint8_t *active_col = s.active.data(), *live = live_[si].data();
     std::uint32_t idle[kContactBatch];
     std::size_t n_active = 0, n_idle = 0;
     for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
-        const std::int32_t i = s.end1[k], j = s.end2[k];
-        const double dist = (B.position[j] - B.position[i]).norm();
-        const double gap = dist - s.radius1[k] - s.radius2[k];
-        const bool active = in_range(s.history, k, dist, gap);
-        s.gap[k] = gap;  // (the centre distance of a ball–ball row is read by the model only)
-        s.active[k] = active;
+        const double dist = (x[end2[k]] - x[end1[k]]).norm();
+        const double gap = dist - r1[k] - r2[k];
+        const bool active = in_range(history, k, dist, gap);
+        gap_col[k] = gap;  // (the centre distance of a ball–ball row is read by the model only)
+        active_col[k] = active;
         d.gap[n_active] = gap;
         d.distance[n_active] = dist;
         d.row[n_active] = std::uint32_t(k);

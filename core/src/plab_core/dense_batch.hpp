@@ -89,9 +89,12 @@ struct RangeTest {
     explicit RangeTest(const ModelInstance& inst)
         : by_distance(inst.desc->range_kind == PLAB_RANGE_DISTANCE), persist(inst.desc->persist_slot),
           range(inst.range), stride(std::size_t(inst.stride)) {}
-    bool operator()(const std::vector<double>& history, std::size_t k, double dist, double gap) const {
+    bool operator()(const double* history, std::size_t k, double dist, double gap) const {
         const bool bonded = persist >= 0 && history[k * stride + std::size_t(persist)] > 0;
         return bonded || (by_distance ? dist <= range : gap <= range);
+    }
+    bool operator()(const std::vector<double>& history, std::size_t k, double dist, double gap) const {
+        return (*this)(history.data(), k, dist, gap);
     }
 };
 
