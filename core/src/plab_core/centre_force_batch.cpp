@@ -57,8 +57,7 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         const Vec normal = dist > 0 ? Vec((B.position[j] - B.position[i]) / dist) : Vec::UnitX();
         d.end1[a] = i;
         d.end2[a] = j;
-        put(d.normal, a, normal);
-        put(d.point, a, B.position[i] + normal * (ri + 0.5 * gap));  // for the readers (stress, outputs)
+        put(d.normal, a, normal);  // (no contact point: readers recompute it, World::contact_point)
         put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
         put(d.rel_angular_velocity, a, Vec::Zero());
         d.radius1[a] = ri;
@@ -77,8 +76,8 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     return exceeded;
 }
 
-// Back from the packed rows of batch [begin, end): history, force, point,
-// normal and step limit to the set's columns (their readers: outputs,
+// Back from the packed rows of batch [begin, end): history, force and step
+// limit to the set's columns (their readers: outputs,
 // stress, the stable step, checkpoints), and each row's force added, in row
 // order, to the chunk's partial sums: -F on end 1, +F on end 2, no moment.
 void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d,
@@ -90,9 +89,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
         for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = d.history[a * stride + h];
-        copy3(s.force.data(), k, d.force, a);
-        copy3(s.point.data(), k, d.point, a);
-        copy3(s.normal.data(), k, d.normal, a);
+        copy3(s.force.data(), k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
         double* f1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
         double* f2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
         for (int c = 0; c < 3; ++c) {

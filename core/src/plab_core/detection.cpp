@@ -195,11 +195,13 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
 // Radii and masses of the two ends are constant while a candidate list lives
 // (a change of bodies marks the world dirty), so these batch columns are
 // filled when the list is made or loaded, not in every step's geometry.
+// A set is packed when force_sweep() takes the dense path for it: no rates
+// stage runs over full columns (force_pass(): swept_), and its model
+// accumulates nothing or only sums of a rates stage, which is skipped.
 bool World::packs_balls(const ModelInstance& inst) const {
     for (const auto& other : instances_)
-        if (other->desc->rates_stage) return false;
-    // (the centre-force path writes point and normal back: it keeps them)
-    return inst.fields_accumulated.empty() && !(inst.desc->flags & PLAB_MODEL_FORCE_AT_CENTRES);
+        if (other->desc->rates_stage && rates_stage_needed(*other)) return false;
+    return inst.fields_accumulated.empty() || inst.desc->rates_stage;
 }
 
 void World::fill_pair_constants(ContactSet& set) const {

@@ -316,6 +316,14 @@ void World::force_pass() {
         // (geometry, model, scatter to slots); a rates stage needs all the
         // geometry before any force. A rates stage whose sums nothing reads
         // is skipped (rates_stage_needed).
+        // a pass added since the last rebuild may need a rates stage over
+        // full columns that a packed set lacks (packs_balls)
+        for (auto& inst : instances_)
+            if (inst->balls.packed != packs_balls(*inst)) {
+                inst->balls.packed = !inst->balls.packed;
+                inst->balls.resize_columns(inst->balls.size(), int(inst->fields_accumulated.size()));
+                fill_pair_constants(inst->balls);
+            }
         bool rates_models = false;
         swept_ = true;
         for (auto& inst : instances_) {

@@ -32,10 +32,9 @@ struct ContactSet {
     // strain, slip, dashpot and break_energy columns are not written (the
     // model gets them packed, dense_batch.hpp) and hold stale values. Those
     // of a PLAB_MODEL_FORCE_AT_CENTRES model (centre_force_batch.cpp) write
-    // back force, point, normal and dt_limit only: moments, stiffness and
-    // energies stay zero. A `packed` set (World::packs_balls: dense, and no
-    // model of the world has a rates stage that could read the full
-    // columns) does not even allocate distance, rel_velocity,
+    // back force and dt_limit only: moments, stiffness and energies stay
+    // zero. A `packed` set (World::packs_balls: dense, and no model of the
+    // world runs a rates stage over the full columns) does not even allocate distance, rel_velocity,
     // rel_angular_velocity, mass1, mass2, eff_mass, eff_radius, strain,
     // slip, dashpot and break_energy, nor normal and point: readers
     // recompute those two from the positions and the gap
