@@ -13,36 +13,22 @@
 
 namespace plab {
 
-// Rows [begin, end) of ball–ball set si: the range test (range_test_rows(),
-// or the flags mark_ball_rows_in_range() set this cycle), then the rows in range packed
+// Rows [begin, end) of ball–ball set si: the rows in range that
+// mark_ball_rows_in_range() listed this cycle (or range_test_rows()), packed
 // into d with the centres' relative velocity. True when an active contact
 // overlaps beyond the model's max_overlap.
 bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                              DenseBatch& d) {
     ContactSet& s = *sets_[si];
-    std::uint8_t* live = live_[si].data();
-    const std::size_t stride = std::size_t(inst.stride);
     const auto& B = bodies;
-    std::uint32_t idle[kContactBatch];
-    std::size_t n_active = 0, n_idle = 0;
-    if (in_range_marked_) {  // mark_ball_rows_in_range() tested these positions: list its rows in range
-        for (std::size_t k = begin; k < end; ++k) {
-            const bool active = s.active[k] != 0;
-            d.row[n_active] = std::uint32_t(k);
-            idle[n_idle] = std::uint32_t(k);
-            n_active += active;
-            n_idle += !active & (live[k] != 0);
-            live[k] = active;
-        }
-        for (std::size_t a = 0; a < n_active; ++a) {  // the same arithmetic as the test
-            const std::size_t k = d.row[a];
-            const std::int32_t i = s.end1[k], j = s.end2[k];
-            d.distance[a] = (B.position[j] - B.position[i]).norm();
-            d.gap[a] = d.distance[a] - B.radius[i] - B.radius[j];
-        }
-        for (std::size_t r = 0; r < n_idle; ++r)
-            for (std::size_t h = 0; h < stride; ++h)
-                s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
+    const std::size_t stride = std::size_t(inst.stride);
+    std::size_t n_active;
+    const RowsInRange* marked = in_range_marked_ && si < in_range_.size() && in_range_[si].listed ? &in_range_[si] : nullptr;
+    if (marked && begin % kContactBatch == 0) {  // mark_ball_rows_in_range() listed this batch's rows in range
+        n_active = marked->count[begin / kContactBatch];
+        std::copy_n(marked->row.data() + begin, n_active, d.row);
+        std::copy_n(marked->distance.data() + begin, n_active, d.distance);
+        for (std::size_t a = 0; a < n_active; ++a) d.gap[a] = s.gap[d.row[a]];
     } else {
         n_active = range_test_rows(inst, si, begin, end, d);
     }

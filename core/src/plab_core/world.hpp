@@ -264,6 +264,12 @@ private:
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
     bool in_range_marked_ = false;   // mark_ball_rows_in_range() ran at the current positions
+    // What mark_ball_rows_in_range() found per ball–ball set: the rows in
+    // range of batch b, listed from b * kContactBatch, and their count; on
+    // the centre-force path (`listed`, for pack_centre_rows()) their centre
+    // distances too.
+    struct RowsInRange { std::vector<std::uint32_t> row, count; std::vector<double> distance; bool listed = false; };
+    std::vector<RowsInRange> in_range_;
     void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end, const Chunk& chunk);
     void scatter_to_chunks(std::uint32_t set_index);
     void force_sweep(std::uint32_t set_index, bool with_geometry);
@@ -350,7 +356,10 @@ private:
     void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
     void rates_stage();
     bool rates_stage_needed(const ModelInstance& inst) const;
-    void mark_ball_rows_in_range();
+    void mark_ball_rows_in_range();  // pass_contacts.cpp
+    void mark_set_in_range(std::uint32_t set_index, bool list);
+    void append_pass_contacts(std::uint32_t set_index);
+    void forget_left_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end);
     void accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i);
     void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);
