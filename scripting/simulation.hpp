@@ -139,7 +139,7 @@ private:
     std::string last_good_;  // checkpoint bytes of the last good state (runs with outputs)
     // `size_hint`: bytes to reserve (the last copy's size): a buffer grown by
     // doubling would need up to three times the checkpoint at its peak
-    std::string checkpoint_bytes(std::size_t size_hint = 0) const;
+    std::string checkpoint_bytes(std::string buffer = {}) const;  // written into buffer's memory
     std::string last_good_path() const;
     void keep_last_good();
     std::string write_last_good() const;  // its path, or "" when none is kept

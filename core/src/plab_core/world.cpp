@@ -230,10 +230,13 @@ void World::take_snapshot() {
     s.step_count = step_count;
     s.bond_breaks = bond_breaks.size();
     snapshot_stable_ = stable_timestep();
-    s.sets.clear();
+    s.sets.resize(2 * instances_.size());  // copied into the last snapshot's buffers: no allocation
+    std::size_t k = 0;
     for (const auto& inst : instances_)
-        for (const ContactSet* c : {&inst->balls, &inst->walls})
-            s.sets.push_back({c->end1, c->end2, c->key1, c->key2, c->history});
+        for (const ContactSet* c : {&inst->balls, &inst->walls}) {
+            SetState& st = s.sets[k++];
+            st.end1 = c->end1; st.end2 = c->end2; st.key1 = c->key1; st.key2 = c->key2; st.history = c->history;
+        }
     s.valid = true;
 }
 

@@ -327,6 +327,16 @@ private:
     void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs);
+    static void sort_by_keys(const std::vector<BodyId>& k1, const std::vector<BodyId>& k2, std::vector<std::size_t>& order);
+    // buffers of rebuild() and install_pairs(), kept between rebuilds
+    struct RebuildScratch {
+        std::vector<std::vector<std::array<std::int32_t, 2>>> ball_pairs, wall_pairs;
+        std::vector<BodyId> k1, k2, nk1, nk2;
+        std::vector<std::size_t> order;
+        std::vector<std::int32_t> e1, e2;
+        std::vector<double> history;
+    };
+    RebuildScratch rebuild_scratch_;
     void build_entries();
     void fill_pair_constants(ContactSet& set) const;
     // whether the ball–ball rows of a model go to it packed (force_sweep): no
