@@ -28,7 +28,6 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         n_active = marked->count[begin / kContactBatch];
         std::copy_n(marked->row.data() + begin, n_active, d.row);
         std::copy_n(marked->distance.data() + begin, n_active, d.distance);
-        for (std::size_t a = 0; a < n_active; ++a) d.gap[a] = s.gap[d.row[a]];
     } else {
         n_active = range_test_rows(inst, si, begin, end, d);
     }
@@ -39,7 +38,8 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         // radii and masses from the bodies (in cache) rather than the set's
         // long columns, with fill_pair_constants()'s arithmetic
         const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
-        const double dist = d.distance[a], gap = d.gap[a];
+        const double dist = d.distance[a], gap = dist - ri - rj;  // the range test's arithmetic
+        d.gap[a] = gap;
         const Vec normal = dist > 0 ? Vec((B.position[j] - B.position[i]) / dist) : Vec::UnitX();
         d.end1[a] = i;
         d.end2[a] = j;
@@ -76,6 +76,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
         const std::size_t k = d.row[a];
         for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = d.history[a * stride + h];
         copy3(s.force.data(), k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
+        s.dt_limit[k] = d.dt_limit[a];  // (a per-pair CFL limit: seldom uniform, so no write_back())
         double* f1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
         double* f2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
         for (int c = 0; c < 3; ++c) {
@@ -84,8 +85,6 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
         }
     }
     // (the batch's energy sums stay zero: force_sweep cleared them)
-    HeldOutputs& held = held_[si][begin / kContactBatch];
-    write_back(s.dt_limit.data(), 1, d.dt_limit, d, begin, std::min(s.size(), begin + kContactBatch), held, 4);
 }
 
 } // namespace plab
