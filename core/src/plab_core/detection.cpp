@@ -292,20 +292,28 @@ void World::build_entries() {
         sets_.push_back(&inst->walls);
         set_owner_.push_back(inst.get());
     }
+    // The rows of a packed centre-force set (SPH) are left out: their
+    // stiffness is zero (nothing to add to sum_stiffness()), and a packed
+    // set accumulates no field that a per-body sum would read.
+    auto listed = [this](std::uint32_t si) {
+        return !(sets_[si]->packed && (set_owner_[si]->desc->flags & PLAB_MODEL_FORCE_AT_CENTRES));
+    };
     const std::size_t n = bodies.size();
     entry_start_.assign(n + 1, 0);
-    for (const ContactSet* s : sets_)
-        for (std::size_t k = 0; k < s->size(); ++k) {
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
+        const ContactSet* s = sets_[si];
+        for (std::size_t k = 0; listed(si) && k < s->size(); ++k) {
             ++entry_start_[s->end1[k] + 1];
             if (!s->with_wall) ++entry_start_[s->end2[k] + 1];
         }
+    }
     std::partial_sum(entry_start_.begin(), entry_start_.end(), entry_start_.begin());
     entries_.resize(entry_start_[n]);
     std::vector<std::uint32_t> fill(entry_start_.begin(), entry_start_.end() - 1);
     constexpr std::uint32_t end2_bit = 1u << 31;
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         const ContactSet* s = sets_[si];
-        for (std::uint32_t k = 0; k < s->size(); ++k) {
+        for (std::uint32_t k = 0; listed(si) && k < s->size(); ++k) {
             entries_[fill[s->end1[k]]++] = {si, k};
             if (!s->with_wall) entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
         }

@@ -321,12 +321,15 @@ void World::force_pass() {
         // is skipped (rates_stage_needed).
         // a pass added since the last rebuild may need a rates stage over
         // full columns that a packed set lacks (packs_balls)
+        bool repacked = false;
         for (auto& inst : instances_)
             if (inst->balls.packed != packs_balls(*inst)) {
                 inst->balls.packed = !inst->balls.packed;
                 inst->balls.resize_columns(inst->balls.size(), int(inst->fields_accumulated.size()));
                 fill_pair_constants(inst->balls);
+                repacked = true;
             }
+        if (repacked) build_entries();  // (which rows it lists depends on packing)
         bool rates_models = false;
         swept_ = true;
         for (auto& inst : instances_) {
