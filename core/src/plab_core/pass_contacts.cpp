@@ -103,10 +103,7 @@ void World::forget_left_rows(const ModelInstance& inst, std::uint32_t si, std::s
     ContactSet& s = *sets_[si];
     std::uint8_t* live = live_[si].data();
     const std::size_t stride = std::size_t(inst.stride);
-    if (stride == 0) {  // nothing to forget (SPH)
-        for (std::size_t k = k0; k < k1; ++k) live[k] = s.active[k];
-        return;
-    }
+    if (stride == 0) return;  // nothing to forget (SPH), and `live` is read for history only
     for (std::size_t k = k0; k < k1; ++k) {
         if (live[k] && !s.active[k])
             for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = inst.desc->history[h].default_value;
