@@ -72,11 +72,12 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     const std::size_t stride = std::size_t(inst.stride);
     double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
     const std::int32_t lo = ch.lo;
+    double *force = s.force.data(), *dt_limit = s.dt_limit.data(), *history = s.history.data();
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
-        for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = d.history[a * stride + h];
-        copy3(s.force.data(), k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
-        s.dt_limit[k] = d.dt_limit[a];  // (a per-pair CFL limit: seldom uniform, so no write_back())
+        for (std::size_t h = 0; h < stride; ++h) history[k * stride + h] = d.history[a * stride + h];
+        copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
+        dt_limit[k] = d.dt_limit[a];  // (a per-pair CFL limit: seldom uniform, so no write_back())
         double* f1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
         double* f2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
         for (int c = 0; c < 3; ++c) {

@@ -57,13 +57,19 @@ void World::mark_set_in_range(std::uint32_t si, bool list) {
         const std::size_t k0 = b * kContactBatch, k1 = std::min(n, k0 + kContactBatch);
         std::uint32_t* row = r.row.data() + k0;
         double* distance = centre ? r.distance.data() + k0 : nullptr;
+        // the columns' addresses held here: the stores below could alias them otherwise
+        const std::int32_t *end1 = s.end1.data(), *end2 = s.end2.data();
+        const double *radius1 = s.radius1.data(), *radius2 = s.radius2.data();
+        const Vec* x = B.position.data();
+        double* gaps = s.gap.data();
+        std::uint8_t* flags = s.active.data();
         std::size_t c = 0;
         for (std::size_t k = k0; k < k1; ++k) {  // no branch per row: in-range flags follow no pattern
-            const double dist = (B.position[s.end2[k]] - B.position[s.end1[k]]).norm();
-            const double gap = dist - s.radius1[k] - s.radius2[k];
+            const double dist = (x[end2[k]] - x[end1[k]]).norm();
+            const double gap = dist - radius1[k] - radius2[k];
             const bool active = in_range(s.history, k, dist, gap);
-            s.gap[k] = gap;
-            s.active[k] = active;
+            gaps[k] = gap;
+            flags[k] = active;
             row[c] = std::uint32_t(k);
             if (centre) distance[c] = dist;
             c += active;
