@@ -315,10 +315,6 @@ void World::force_pass() {
     }
     {
         PhaseTimer t{phase_seconds[ph_force]};
-        // without a rates stage, each set is done in one sweep over batches
-        // (geometry, model, scatter to slots); a rates stage needs all the
-        // geometry before any force. A rates stage whose sums nothing reads
-        // is skipped (rates_stage_needed).
         // a pass added since the last rebuild may need a rates stage over
         // full columns that a packed set lacks (packs_balls)
         bool repacked = false;
@@ -330,6 +326,10 @@ void World::force_pass() {
                 repacked = true;
             }
         if (repacked) build_entries();  // (which rows it lists depends on packing)
+        // without a rates stage, each set is done in one sweep over batches
+        // (geometry, model, scatter to slots); a rates stage needs all the
+        // geometry before any force. A rates stage whose sums nothing reads
+        // is skipped (rates_stage_needed).
         bool rates_models = false;
         swept_ = true;
         for (auto& inst : instances_) {
