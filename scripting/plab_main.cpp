@@ -13,7 +13,6 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
-#include <malloc.h>
 #include <iostream>
 #include <sstream>
 
@@ -231,11 +230,6 @@ int cmd_validate(const std::vector<std::string>& args) {
 } // namespace
 
 int main(int argc, char** argv) {
-    // A neighbour rebuild replaces the contact columns (megabytes); glibc
-    // would hand such blocks back to the kernel and fault them in again at
-    // the next rebuild (~8 % of an SPH run's CPU in page faults). Keep them.
-    mallopt(M_MMAP_THRESHOLD, 1 << 30);
-    mallopt(M_TRIM_THRESHOLD, 1 << 30);
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || args[0] == "--help" || args[0] == "-h") {
         std::cout << usage;

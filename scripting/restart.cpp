@@ -106,9 +106,11 @@ void Simulation::keep_last_good() {
     const World& w = *world_;
     if (out_dir_.empty() || w.snapshot_interval == 0) return;
     if (last_good_.empty() || w.step_count % w.snapshot_interval == 0) {
-        const std::size_t size = last_good_.size();
-        std::string().swap(last_good_);  // free the old copy first: only one is held at a time
-        last_good_ = checkpoint_bytes(size + size / 8);
+        // rewritten in place: only one copy is held, and its pages stay mapped
+        std::string buffer = std::move(last_good_);
+        last_good_.clear();
+        buffer.reserve(buffer.size() + buffer.size() / 8);
+        last_good_ = checkpoint_bytes(std::move(buffer));
     }
 }
 
@@ -118,9 +120,8 @@ std::string Simulation::write_last_good() const {
     return last_good_path();
 }
 
-std::string Simulation::checkpoint_bytes(std::size_t size_hint) const {
-    CheckpointWriter out;
-    out.reserve(size_hint);
+std::string Simulation::checkpoint_bytes(std::string buffer) const {
+    CheckpointWriter out(std::move(buffer));
     const auto used = plugins_used(scene_, scene_dir_, *host_, *world_);
     out.section("plugins");
     out.u64(used.size());

@@ -137,9 +137,10 @@ private:
     bool resumed_ = false, interrupted_ = false;
     bool run_command(const Command& c);  // false: stopped by a signal before it completed
     std::string last_good_;  // checkpoint bytes of the last good state (runs with outputs)
-    // `size_hint`: bytes to reserve (the last copy's size): a buffer grown by
-    // doubling would need up to three times the checkpoint at its peak
-    std::string checkpoint_bytes(std::size_t size_hint = 0) const;
+    // written into `buffer`'s memory (keep_last_good() hands it the last
+    // copy, reserved an eighth larger): a buffer grown by doubling would
+    // need up to three times the checkpoint at its peak
+    std::string checkpoint_bytes(std::string buffer = {}) const;
     std::string last_good_path() const;
     void keep_last_good();
     std::string write_last_good() const;  // its path, or "" when none is kept

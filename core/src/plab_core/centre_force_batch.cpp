@@ -13,36 +13,21 @@
 
 namespace plab {
 
-// Rows [begin, end) of ball–ball set si: the range test (range_test_rows(),
-// or the flags mark_ball_rows_in_range() set this cycle), then the rows in range packed
+// Rows [begin, end) of ball–ball set si: the rows in range that
+// mark_ball_rows_in_range() listed this cycle (or range_test_rows()), packed
 // into d with the centres' relative velocity. True when an active contact
 // overlaps beyond the model's max_overlap.
 bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                              DenseBatch& d) {
     ContactSet& s = *sets_[si];
-    std::uint8_t* live = live_[si].data();
-    const std::size_t stride = std::size_t(inst.stride);
     const auto& B = bodies;
-    std::uint32_t idle[kContactBatch];
-    std::size_t n_active = 0, n_idle = 0;
-    if (in_range_marked_) {  // mark_ball_rows_in_range() tested these positions: list its rows in range
-        for (std::size_t k = begin; k < end; ++k) {
-            const bool active = s.active[k] != 0;
-            d.row[n_active] = std::uint32_t(k);
-            idle[n_idle] = std::uint32_t(k);
-            n_active += active;
-            n_idle += !active & (live[k] != 0);
-            live[k] = active;
-        }
-        for (std::size_t a = 0; a < n_active; ++a) {  // the same arithmetic as the test
-            const std::size_t k = d.row[a];
-            const std::int32_t i = s.end1[k], j = s.end2[k];
-            d.distance[a] = (B.position[j] - B.position[i]).norm();
-            d.gap[a] = d.distance[a] - B.radius[i] - B.radius[j];
-        }
-        for (std::size_t r = 0; r < n_idle; ++r)
-            for (std::size_t h = 0; h < stride; ++h)
-                s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
+    const std::size_t stride = std::size_t(inst.stride);
+    std::size_t n_active;
+    const RowsInRange* marked = in_range_marked_ && si < in_range_.size() && in_range_[si].listed ? &in_range_[si] : nullptr;
+    if (marked && begin % kContactBatch == 0) {  // mark_ball_rows_in_range() listed this batch's rows in range
+        n_active = marked->count[begin / kContactBatch];
+        std::copy_n(marked->row.data() + begin, n_active, d.row);
+        std::copy_n(marked->distance.data() + begin, n_active, d.distance);
     } else {
         n_active = range_test_rows(inst, si, begin, end, d);
     }
@@ -53,12 +38,12 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         // radii and masses from the bodies (in cache) rather than the set's
         // long columns, with fill_pair_constants()'s arithmetic
         const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
-        const double dist = d.distance[a], gap = d.gap[a];
+        const double dist = d.distance[a], gap = dist - ri - rj;  // the range test's arithmetic
+        d.gap[a] = gap;
         const Vec normal = centre_normal(B.position[i], B.position[j], dist);
         d.end1[a] = i;
         d.end2[a] = j;
-        put(d.normal, a, normal);
-        put(d.point, a, B.position[i] + normal * (ri + 0.5 * gap));  // for the readers (stress, outputs)
+        put(d.normal, a, normal);  // (no contact point: readers recompute it, World::contact_point)
         put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
         put(d.rel_angular_velocity, a, Vec::Zero());
         d.radius1[a] = ri;
@@ -77,8 +62,8 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     return exceeded;
 }
 
-// Back from the packed rows of batch [begin, end): history, force, point,
-// normal and step limit to the set's columns (their readers: outputs,
+// Back from the packed rows of batch [begin, end): history, force and step
+// limit to the set's columns (their readers: outputs,
 // stress, the stable step, checkpoints), and each row's force added, in row
 // order, to the chunk's partial sums: -F on end 1, +F on end 2, no moment.
 void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d,
@@ -87,12 +72,12 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     const std::size_t stride = std::size_t(inst.stride);
     double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
     const std::int32_t lo = ch.lo;
+    double *force = s.force.data(), *dt_limit = s.dt_limit.data(), *history = s.history.data();
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
-        for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = d.history[a * stride + h];
-        copy3(s.force.data(), k, d.force, a);
-        copy3(s.point.data(), k, d.point, a);
-        copy3(s.normal.data(), k, d.normal, a);
+        for (std::size_t h = 0; h < stride; ++h) history[k * stride + h] = d.history[a * stride + h];
+        copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
+        dt_limit[k] = d.dt_limit[a];  // (a per-pair CFL limit: seldom uniform, so no write_back())
         double* f1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
         double* f2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
         for (int c = 0; c < 3; ++c) {
@@ -101,8 +86,6 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
         }
     }
     // (the batch's energy sums stay zero: force_sweep cleared them)
-    HeldOutputs& held = held_[si][begin / kContactBatch];
-    write_back(s.dt_limit.data(), 1, d.dt_limit, d, begin, std::min(s.size(), begin + kContactBatch), held, 4);
 }
 
 } // namespace plab

@@ -21,7 +21,8 @@ constexpr char kMagic[8] = {'P', 'L', 'A', 'B', 'C', 'K', 'P', 'T'};
 constexpr std::uint32_t kEndianMarker = 0x01020304u;
 } // namespace
 
-CheckpointWriter::CheckpointWriter() {
+CheckpointWriter::CheckpointWriter(std::string buffer) : data_(std::move(buffer)) {
+    data_.clear();
     raw(kMagic, sizeof kMagic);
     u32(kCheckpointFormat);
     u32(kEndianMarker);

@@ -35,7 +35,9 @@ public:
 
 class CheckpointWriter {
 public:
-    CheckpointWriter();  // writes the header
+    // writes the header; into `buffer`'s memory when given one (a checkpoint
+    // kept in memory is rewritten in place, without faulting new pages in)
+    explicit CheckpointWriter(std::string buffer = {});
     void section(const std::string& name) { str(name); }
     void u8(std::uint8_t v) { raw(&v, 1); }
     void u32(std::uint32_t v) { raw(&v, sizeof v); }

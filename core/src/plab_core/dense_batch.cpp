@@ -106,28 +106,6 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
     return exceeded;
 }
 
-// The range test alone, for every ball–ball set (gap and active flag, as
-// pack_ball_rows() sets them): the contacts the passes of phase RATES_DONE
-// see when a rates-stage model's own stage is skipped and its forces come
-// from the packed sweep, after those passes.
-void World::mark_ball_rows_in_range() {
-    const auto& B = bodies;
-    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
-        ContactSet& s = *sets_[si];
-        if (s.with_wall) continue;
-        const RangeTest in_range(*set_owner_[si]);
-        const std::size_t n = s.size();
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
-        for (std::size_t k = 0; k < n; ++k) {
-            const double dist = (B.position[s.end2[k]] - B.position[s.end1[k]]).norm();
-            const double gap = dist - s.radius1[k] - s.radius2[k];
-            s.gap[k] = gap;
-            s.active[k] = in_range(s.history, k, dist, gap);
-        }
-    }
-    in_range_marked_ = true;
-}
-
 Vec World::contact_normal(const ContactSet& s, std::size_t k) const {
     if (!s.packed) return Vec(&s.normal[3 * k]);
     const std::int32_t i = s.end1[k], j = s.end2[k];

@@ -13,21 +13,39 @@
 
 namespace plab {
 
+namespace {
+// v holds n copies of x. A list that outgrows its columns gets room for an
+// eighth more: the candidate count of a flow creeps up and down from one
+// rebuild to the next, and a reallocation at every new high would fault
+// the pages of every column in again.
+template <class T>
+void fill(std::vector<T>& v, std::size_t n, T x) {
+    if (n > v.capacity()) {
+        std::vector<T>().swap(v);  // the old block goes first: no two copies at the peak
+        v.reserve(n + n / 8);
+    }
+    v.assign(n, x);
+}
+} // namespace
+
 void ContactSet::resize_columns(std::size_t n, int n_acc) {
-    active.assign(n, 0);
-    interior.assign(with_wall ? n : 0, 1);
-    for (auto* v : {&force, &moment1, &moment2}) v->assign(3 * n, 0.0);
-    for (auto* v : {&gap, &radius1, &radius2, &k_t, &k_r, &dt_limit}) v->assign(n, 0.0);
+    fill(active, n, std::uint8_t(0));
+    fill(interior, with_wall ? n : 0, std::uint8_t(1));
+    for (auto* v : {&force, &moment1, &moment2}) fill(*v, 3 * n, 0.0);
+    for (auto* v : {&gap, &radius1, &radius2, &k_t, &k_r, &dt_limit}) fill(*v, n, 0.0);
     // what only the model reads, or only per-batch sums need: none when packed
     const std::size_t m = packed ? 0 : n;
-    for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) v->assign(3 * m, 0.0);
-    for (auto* v : {&distance, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot, &break_energy}) {
-        v->assign(m, 0.0);
-        v->shrink_to_fit();
-    }
-    for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) v->shrink_to_fit();
-    acc1.assign(n_acc, std::vector<double>(n, 0.0));
-    acc2.assign(n_acc, std::vector<double>(n, 0.0));
+    for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) fill(*v, 3 * m, 0.0);
+    for (auto* v : {&distance, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot, &break_energy})
+        fill(*v, m, 0.0);
+    if (packed)  // not kept at all
+        for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity, &distance, &mass1, &mass2, &eff_mass,
+                        &eff_radius, &strain, &slip, &dashpot, &break_energy})
+            std::vector<double>().swap(*v);
+    acc1.resize(std::size_t(n_acc));
+    acc2.resize(std::size_t(n_acc));
+    for (auto* acc : {&acc1, &acc2})
+        for (auto& a : *acc) fill(a, n, 0.0);
 }
 
 namespace {
@@ -142,64 +160,88 @@ void World::keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
 // (a pair listed twice — a bond that is also a candidate — is kept once).
 void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) {
     const std::size_t n = pairs.size();
-    std::vector<BodyId> k1(n), k2(n);
+    RebuildScratch& t = rebuild_scratch_;  // reused: a rebuild allocates nothing once the lists stop growing
+    t.k1.resize(n);
+    t.k2.resize(n);
     for (std::size_t r = 0; r < n; ++r) {
         auto& pr = pairs[r];
         if (set.with_wall) {
-            k1[r] = bodies.id[pr[0]];
-            k2[r] = walls.facets[pr[1]].id;
+            t.k1[r] = bodies.id[pr[0]];
+            t.k2[r] = walls.facets[pr[1]].id;
         } else {
             if (bodies.id[pr[0]] > bodies.id[pr[1]]) std::swap(pr[0], pr[1]);  // end 1 has the lower id
-            k1[r] = bodies.id[pr[0]];
-            k2[r] = bodies.id[pr[1]];
+            t.k1[r] = bodies.id[pr[0]];
+            t.k2[r] = bodies.id[pr[1]];
         }
     }
-    std::vector<std::size_t> order(n);
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return k1[a] != k1[b] ? k1[a] < k1[b] : k2[a] < k2[b];
-    });
-    order.erase(std::unique(order.begin(), order.end(),
-                            [&](std::size_t a, std::size_t b) { return k1[a] == k1[b] && k2[a] == k2[b]; }),
-                order.end());
-    const std::size_t n_unique = order.size();
+    sort_by_keys(t.k1, t.k2, t.order);
+    const std::size_t n_unique = t.order.size();
     const int stride = inst.stride;
-    std::vector<double> history(n_unique * stride);
-    std::vector<std::int32_t> e1(n_unique), e2(n_unique);
-    std::vector<BodyId> nk1(n_unique), nk2(n_unique);
+    t.history.resize(n_unique * stride);
+    t.e1.resize(n_unique);
+    t.e2.resize(n_unique);
+    t.nk1.resize(n_unique);
+    t.nk2.resize(n_unique);
     std::size_t old = 0;
     for (std::size_t r = 0; r < n_unique; ++r) {
-        const std::size_t src = order[r];
-        e1[r] = pairs[src][0];
-        e2[r] = pairs[src][1];
-        nk1[r] = k1[src];
-        nk2[r] = k2[src];
-        while (old < set.size() && (set.key1[old] < nk1[r] || (set.key1[old] == nk1[r] && set.key2[old] < nk2[r])))
+        const std::size_t src = t.order[r];
+        t.e1[r] = pairs[src][0];
+        t.e2[r] = pairs[src][1];
+        t.nk1[r] = t.k1[src];
+        t.nk2[r] = t.k2[src];
+        while (old < set.size() && (set.key1[old] < t.nk1[r] || (set.key1[old] == t.nk1[r] && set.key2[old] < t.nk2[r])))
             ++old;
-        double* row = history.data() + r * stride;
-        if (old < set.size() && set.key1[old] == nk1[r] && set.key2[old] == nk2[r])
+        double* row = t.history.data() + r * stride;
+        if (old < set.size() && set.key1[old] == t.nk1[r] && set.key2[old] == t.nk2[r])
             std::copy_n(set.history.data() + old * stride, stride, row);  // survivor keeps its history
         else
             for (int h = 0; h < stride; ++h) row[h] = inst.desc->history[h].default_value;
     }
-    set.end1 = std::move(e1);
-    set.end2 = std::move(e2);
-    set.key1 = std::move(nk1);
-    set.key2 = std::move(nk2);
-    set.history = std::move(history);
+    // swapped, not moved: the old list's buffers serve the next rebuild
+    set.end1.swap(t.e1);
+    set.end2.swap(t.e2);
+    set.key1.swap(t.nk1);
+    set.key2.swap(t.nk2);
+    set.history.swap(t.history);
     set.packed = !set.with_wall && packs_balls(inst);
     set.resize_columns(n_unique, int(inst.fields_accumulated.size()));
     fill_pair_constants(set);
 }
 
-// Radii and masses of the two ends are constant while a candidate list lives
-// (a change of bodies marks the world dirty), so these batch columns are
-// filled when the list is made or loaded, not in every step's geometry.
+// `order`: the rows of keys (k1, k2) sorted by k1 then k2, each key once.
+// build_ball_pairs() walks the bodies in index order, and ids follow the
+// indices unless bodies were deleted or reordered: the pairs then arrive
+// ordered by k1, and sorting each run of one k1 by k2 (a dozen rows) gives
+// the same order as one sort of the whole list, in a fraction of its time.
+void World::sort_by_keys(const std::vector<BodyId>& k1, const std::vector<BodyId>& k2, std::vector<std::size_t>& order) {
+    const std::size_t n = k1.size();
+    order.resize(n);
+    std::iota(order.begin(), order.end(), 0);
+    auto by_k2 = [&](std::size_t a, std::size_t b) { return k2[a] < k2[b]; };
+    if (std::is_sorted(k1.begin(), k1.end())) {
+        for (std::size_t a = 0; a < n;) {
+            std::size_t b = a + 1;
+            while (b < n && k1[b] == k1[a]) ++b;
+            std::sort(order.begin() + a, order.begin() + b, by_k2);
+            a = b;
+        }
+    } else {
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+            return k1[a] != k1[b] ? k1[a] < k1[b] : k2[a] < k2[b];
+        });
+    }
+    order.erase(std::unique(order.begin(), order.end(),
+                            [&](std::size_t a, std::size_t b) { return k1[a] == k1[b] && k2[a] == k2[b]; }),
+                order.end());
+}
+
+// A set is packed when force_sweep() takes the dense path for it: no rates
+// stage runs over full columns (force_pass(): swept_), and its model
+// accumulates nothing or only sums of a rates stage, which is skipped.
 bool World::packs_balls(const ModelInstance& inst) const {
     for (const auto& other : instances_)
-        if (other->desc->rates_stage) return false;
-    // (the centre-force path writes point and normal back: it keeps them)
-    return inst.fields_accumulated.empty() && !(inst.desc->flags & PLAB_MODEL_FORCE_AT_CENTRES);
+        if (other->desc->rates_stage && rates_stage_needed(*other)) return false;
+    return inst.fields_accumulated.empty() || inst.desc->rates_stage;
 }
 
 void World::fill_pair_constants(ContactSet& set) const {
@@ -218,7 +260,12 @@ void World::fill_pair_constants(ContactSet& set) const {
 }
 
 void World::rebuild() {
-    std::vector<std::vector<std::array<std::int32_t, 2>>> ball_pairs(instances_.size()), wall_pairs(instances_.size());
+    auto& ball_pairs = rebuild_scratch_.ball_pairs;  // cleared, not freed: the next rebuild fills as many
+    auto& wall_pairs = rebuild_scratch_.wall_pairs;
+    ball_pairs.resize(instances_.size());
+    wall_pairs.resize(instances_.size());
+    for (auto* lists : {&ball_pairs, &wall_pairs})
+        for (auto& l : *lists) l.clear();
     build_ball_pairs(ball_pairs);
     build_wall_pairs(wall_pairs);
     for (std::size_t m = 0; m < instances_.size(); ++m) {
@@ -245,20 +292,28 @@ void World::build_entries() {
         sets_.push_back(&inst->walls);
         set_owner_.push_back(inst.get());
     }
+    // The rows of a packed centre-force set (SPH) are left out: their
+    // stiffness is zero (nothing to add to sum_stiffness()), and a packed
+    // set accumulates no field that a per-body sum would read.
+    auto listed = [this](std::uint32_t si) {
+        return !(sets_[si]->packed && (set_owner_[si]->desc->flags & PLAB_MODEL_FORCE_AT_CENTRES));
+    };
     const std::size_t n = bodies.size();
     entry_start_.assign(n + 1, 0);
-    for (const ContactSet* s : sets_)
-        for (std::size_t k = 0; k < s->size(); ++k) {
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
+        const ContactSet* s = sets_[si];
+        for (std::size_t k = 0; listed(si) && k < s->size(); ++k) {
             ++entry_start_[s->end1[k] + 1];
             if (!s->with_wall) ++entry_start_[s->end2[k] + 1];
         }
+    }
     std::partial_sum(entry_start_.begin(), entry_start_.end(), entry_start_.begin());
     entries_.resize(entry_start_[n]);
     std::vector<std::uint32_t> fill(entry_start_.begin(), entry_start_.end() - 1);
     constexpr std::uint32_t end2_bit = 1u << 31;
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         const ContactSet* s = sets_[si];
-        for (std::uint32_t k = 0; k < s->size(); ++k) {
+        for (std::uint32_t k = 0; listed(si) && k < s->size(); ++k) {
             entries_[fill[s->end1[k]]++] = {si, k};
             if (!s->with_wall) entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
         }

@@ -230,10 +230,13 @@ void World::take_snapshot() {
     s.step_count = step_count;
     s.bond_breaks = bond_breaks.size();
     snapshot_stable_ = stable_timestep();
-    s.sets.clear();
+    s.sets.resize(2 * instances_.size());  // copied into the last snapshot's buffers: no allocation
+    std::size_t k = 0;
     for (const auto& inst : instances_)
-        for (const ContactSet* c : {&inst->balls, &inst->walls})
-            s.sets.push_back({c->end1, c->end2, c->key1, c->key2, c->history});
+        for (const ContactSet* c : {&inst->balls, &inst->walls}) {
+            SetState& st = s.sets[k++];
+            st.end1 = c->end1; st.end2 = c->end2; st.key1 = c->key1; st.key2 = c->key2; st.history = c->history;
+        }
     s.valid = true;
 }
 
@@ -312,6 +315,17 @@ void World::force_pass() {
     }
     {
         PhaseTimer t{phase_seconds[ph_force]};
+        // a pass added since the last rebuild may need a rates stage over
+        // full columns that a packed set lacks (packs_balls)
+        bool repacked = false;
+        for (auto& inst : instances_)
+            if (inst->balls.packed != packs_balls(*inst)) {
+                inst->balls.packed = !inst->balls.packed;
+                inst->balls.resize_columns(inst->balls.size(), int(inst->fields_accumulated.size()));
+                fill_pair_constants(inst->balls);
+                repacked = true;
+            }
+        if (repacked) build_entries();  // (which rows it lists depends on packing)
         // without a rates stage, each set is done in one sweep over batches
         // (geometry, model, scatter to slots); a rates stage needs all the
         // geometry before any force. A rates stage whose sums nothing reads
@@ -332,8 +346,7 @@ void World::force_pass() {
         if (swept_ && rates_models) {
             // the passes that turn rates into states (e.g. summation density,
             // the EOS) still run before the forces, on this cycle's contacts
-            mark_ball_rows_in_range();
-            build_pass_contacts();
+            mark_ball_rows_in_range();  // (it lists the passes' contacts too)
             run_passes(PLAB_PHASE_RATES_DONE);
             for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
             in_range_marked_ = false;

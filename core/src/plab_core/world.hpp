@@ -32,10 +32,9 @@ struct ContactSet {
     // strain, slip, dashpot and break_energy columns are not written (the
     // model gets them packed, dense_batch.hpp) and hold stale values. Those
     // of a PLAB_MODEL_FORCE_AT_CENTRES model (centre_force_batch.cpp) write
-    // back force, point, normal and dt_limit only: moments, stiffness and
-    // energies stay zero. A `packed` set (World::packs_balls: dense, and no
-    // model of the world has a rates stage that could read the full
-    // columns) does not even allocate distance, rel_velocity,
+    // back force and dt_limit only: moments, stiffness and energies stay
+    // zero. A `packed` set (World::packs_balls: dense, and no model of the
+    // world runs a rates stage over the full columns) does not even allocate distance, rel_velocity,
     // rel_angular_velocity, mass1, mass2, eff_mass, eff_radius, strain,
     // slip, dashpot and break_energy, nor normal and point: readers
     // recompute those two from the positions and the gap
@@ -268,6 +267,12 @@ private:
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
     bool in_range_marked_ = false;   // mark_ball_rows_in_range() ran at the current positions
+    // What mark_ball_rows_in_range() found per ball–ball set: the rows in
+    // range of batch b, listed from b * kContactBatch, and their count; on
+    // the centre-force path (`listed`, for pack_centre_rows()) their centre
+    // distances too.
+    struct RowsInRange { std::vector<std::uint32_t> row, count; std::vector<double> distance; bool listed = false; };
+    std::vector<RowsInRange> in_range_;
     void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end, const Chunk& chunk);
     void scatter_to_chunks(std::uint32_t set_index);
     void force_sweep(std::uint32_t set_index, bool with_geometry);
@@ -325,6 +330,16 @@ private:
     void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs);
+    static void sort_by_keys(const std::vector<BodyId>& k1, const std::vector<BodyId>& k2, std::vector<std::size_t>& order);
+    // buffers of rebuild() and install_pairs(), kept between rebuilds
+    struct RebuildScratch {
+        std::vector<std::vector<std::array<std::int32_t, 2>>> ball_pairs, wall_pairs;
+        std::vector<BodyId> k1, k2, nk1, nk2;
+        std::vector<std::size_t> order;
+        std::vector<std::int32_t> e1, e2;
+        std::vector<double> history;
+    };
+    RebuildScratch rebuild_scratch_;
     void build_entries();
     void fill_pair_constants(ContactSet& set) const;
     // whether the ball–ball rows of a model go to it packed (force_sweep): no
@@ -356,7 +371,10 @@ private:
     void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
     void rates_stage();
     bool rates_stage_needed(const ModelInstance& inst) const;
-    void mark_ball_rows_in_range();
+    void mark_ball_rows_in_range();  // pass_contacts.cpp
+    void mark_set_in_range(std::uint32_t set_index, bool list);
+    void append_pass_contacts(std::uint32_t set_index);
+    void forget_left_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end);
     void accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i);
     void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);
