@@ -21,6 +21,9 @@ struct Linear {
     static constexpr const char* timestep_rule =
         "per ball sqrt(m / sum k) over its contacts (translation) and sqrt(I / sum k r^2) (rotation), k = max(kn, ks)";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    // reads the effective mass (dashpots) besides normal, gap and relative
+    // velocity; writes no pure moment, rotational stiffness or step limit
+    static constexpr uint32_t io = PLAB_IO_EFF_MASS;
 
     enum Prop : int { kn, ks, fric, dp_nratio, dp_sratio, dp_mode, rgap, prop_count };
     static constexpr plab_property_desc properties[] = {

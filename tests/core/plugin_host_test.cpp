@@ -1,6 +1,7 @@
 // The plug-in host refuses bad libraries with messages that say what to fix
 // (issue: kernel acceptance 7; issue: SDK, errors for plug-in authors).
 #include "simulation.hpp"
+#include "settling_scene.hpp"
 
 #include <plab_core/error.hpp>
 #include <plab_core/plugin_host.hpp>
@@ -8,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
+#include <tuple>
 
 using namespace plab;
 using Catch::Matchers::Contains;
@@ -135,4 +137,48 @@ TEST_CASE("PLAB_PLUGIN_PATH folders are searched before the build folder", "[hos
     unsetenv("PLAB_PLUGIN_PATH");
     CHECK(host.search_dirs().front() == PLAB_TEST_PLUGIN_DIR);
     CHECK_THAT(host.resolve("nan_model"), Contains("test_plugins/nan_model.so"));
+}
+
+// ABI 5: a model may declare the optional inputs it reads and outputs it
+// writes (abi.h, PLAB_IO_*); the host then skips the others. A wrong
+// declaration would give silently wrong forces, so the host checks it on a
+// probe contact before the first step.
+TEST_CASE("a model that reads an input its io does not declare is refused, told what to add", "[host][io]") {
+    json scene = two_balls("reads_undeclared");
+    scene["plugins"] = {"linear", test_plugin("undeclared_io")};
+    CHECK_THROWS_WITH(Simulation(scene), Contains("contact model 'reads_undeclared'") &&
+                                             Contains("inputs its `io` does not declare are NaN") &&
+                                             Contains("add it to `io`"));
+}
+
+TEST_CASE("a model that writes an output its io does not declare is refused, naming the column", "[host][io]") {
+    json scene = two_balls("writes_undeclared");
+    scene["plugins"] = {"linear", test_plugin("undeclared_io")};
+    CHECK_THROWS_WITH(Simulation(scene), Contains("contact model 'writes_undeclared' writes moment1") &&
+                                             Contains("does not declare it"));
+}
+
+TEST_CASE("linear with its io declaration gives bit for bit the state of the same law without it", "[host][io]") {
+    // the settling pile (friction, dashpots, walls): the declared path skips
+    // packing spin, radii and masses and reading back moments; nothing the law
+    // uses may change
+    auto run = [](int dim, const std::string& model, const std::string& plugin) {
+        json scene = settling_scene(dim, dim == 2 ? 150 : 400);
+        scene["plugins"] = {"linear", plugin};
+        scene["contact_models"][0]["model"] = model;
+        Simulation sim(scene);
+        sim.set_quiet(true);
+        sim.cycle(1500);
+        const auto& e = sim.world().energies;
+        return std::make_tuple(sim.world().state_hash(), e.kinetic, e.dashpot, e.slip, sim.world().stable_timestep().critical);
+    };
+    for (int dim : {2, 3}) {
+        INFO("dim " << dim);
+        const auto declared = run(dim, "linear", "linear");
+        const auto undeclared = run(dim, "linear_undeclared", test_plugin("linear_undeclared"));
+        CHECK(std::get<1>(declared) > 0);  // the pile moves, and its contacts dissipate
+        CHECK(std::get<2>(declared) > 0);
+        CHECK(std::get<3>(declared) > 0);
+        CHECK(declared == undeclared);
+    }
 }

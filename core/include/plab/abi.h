@@ -33,6 +33,11 @@
  *      written by an ABI 3 plab is refused by name (the host ABI is in it).
  *      A model with rates_stage is no longer called in the rates stage when
  *      no pass or model reads a field it accumulates (docs/sph.md).
+ *   5  plab_contact_model_desc gains `io` (PLAB_IO_*), appended: a model
+ *      may declare which of the optional inputs it reads and optional
+ *      outputs it writes, and the host then computes and reads back only
+ *      those. 0 (every older plug-in, and a model that declares nothing)
+ *      means all of them, as before.
  *
  * Contact models are called once per *batch* of contacts over host-owned
  * structure-of-arrays data (plab_contact_batch). A batch may hold only
@@ -58,7 +63,7 @@
 extern "C" {
 #endif
 
-#define PLAB_ABI_VERSION 4u
+#define PLAB_ABI_VERSION 5u
 #define PLAB_ABI_OLDEST 1u /* oldest plug-in ABI this host still loads */
 
 /* ---- descriptions ------------------------------------------------------ */
@@ -204,7 +209,33 @@ typedef struct plab_contact_model_desc {
     uint32_t rates_stage;
     /* since ABI 4: PLAB_MODEL_* bits (0 for a plug-in of ABI 3 or older) */
     uint32_t flags;
+    /* since ABI 5: PLAB_IO_* bits (0 for a plug-in of ABI 4 or older) */
+    uint32_t io;
 } plab_contact_model_desc;
+
+/* `io` (since ABI 5): what a model reads and writes beyond what every model
+ * gets (end1, end2, active, normal, gap, distance, rel_velocity, history,
+ * dt, body fields) and must write (force; strain, slip and dashpot energy and
+ * stiffness_translational, zeroed by the host). Without PLAB_IO_DECLARED
+ * the host provides and reads back everything, as before ABI 5. With it,
+ * the host skips the inputs and outputs not named: an input not named is
+ * not computed (it may hold NaN), an output not named is neither zeroed nor
+ * read (pure moments and rotational stiffness count as zero, dt_limit as
+ * no limit, break energy as zero). Before the first step the host calls the
+ * model once on a touching contact whose undeclared inputs are NaN and
+ * undeclared outputs are NaN sentinels, and refuses it, naming the column,
+ * if the force turns NaN or a sentinel is overwritten. */
+#define PLAB_IO_DECLARED (1u << 31)
+#define PLAB_IO_REL_ANGULAR_VELOCITY 2u  /* input: rel_angular_velocity */
+#define PLAB_IO_RADII 4u                 /* inputs: radius1, radius2 */
+#define PLAB_IO_MASSES 8u                /* inputs: mass1, mass2 */
+#define PLAB_IO_EFF_MASS 16u             /* input: eff_mass */
+#define PLAB_IO_EFF_RADIUS 32u           /* input: eff_radius */
+#define PLAB_IO_MOMENTS 256u             /* outputs: moment1, moment2 */
+#define PLAB_IO_STIFFNESS_ROTATIONAL 512u /* output: stiffness_rotational */
+#define PLAB_IO_DT_LIMIT 1024u           /* output: dt_limit */
+#define PLAB_IO_BREAK_ENERGY 2048u       /* output: break_energy */
+#define PLAB_IO_KNOWN_BITS (PLAB_IO_DECLARED | 62u | 256u | 512u | 1024u | 2048u)
 
 /* PLAB_MODEL_FORCE_AT_CENTRES (since ABI 4): the pair force acts between the
  * two particle centres, as in SPH (an interaction of points, not a touching

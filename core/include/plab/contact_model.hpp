@@ -21,7 +21,11 @@
 // (plab_field_desc arrays) to read body fields / accumulate into them;
 // `persist_slot` (int) for a model with bonds; `rates_stage` (bool) for a
 // model that accumulates field rates before forces (SPH; see abi.h);
-// `flags` (uint32_t, PLAB_MODEL_* of abi.h) e.g. for a force between centres.
+// `flags` (uint32_t, PLAB_MODEL_* of abi.h) e.g. for a force between centres;
+// `io` (uint32_t, PLAB_IO_* of abi.h): the optional inputs the law reads and
+// outputs it writes, e.g. `PLAB_IO_EFF_MASS` for a law that reads only the
+// effective mass besides normal, gap and relative velocity; the host then
+// skips the rest (PLAB_IO_DECLARED is added for you).
 #ifndef PLAB_CONTACT_MODEL_HPP
 #define PLAB_CONTACT_MODEL_HPP
 
@@ -92,7 +96,10 @@ public:
     void add_slip_energy(double e) const { b_.slip_energy[k_] += e; }
     void add_dashpot_energy(double e) const { b_.dashpot_energy[k_] += e; }
     // stiffness seen by the host's stable-timestep estimate sqrt(m / sum k)
-    void set_stiffness(double translational, double rotational = 0.0) const {
+    // (the one-argument form leaves the rotational stiffness at the host's
+    // zero, so a model that declares its `io` need not declare it)
+    void set_stiffness(double translational) const { b_.stiffness_translational[k_] = translational; }
+    void set_stiffness(double translational, double rotational) const {
         b_.stiffness_translational[k_] = translational;
         b_.stiffness_rotational[k_] = rotational;
     }
@@ -120,6 +127,8 @@ template <class M, class = void> struct has_rates : std::false_type {};
 template <class M> struct has_rates<M, std::void_t<decltype(M::rates_stage)>> : std::true_type {};
 template <class M, class = void> struct has_flags : std::false_type {};
 template <class M> struct has_flags<M, std::void_t<decltype(M::flags)>> : std::true_type {};
+template <class M, class = void> struct has_io : std::false_type {};
+template <class M> struct has_io<M, std::void_t<decltype(M::io)>> : std::true_type {};
 template <class M, class = void> struct has_history : std::false_type {};
 template <class M> struct has_history<M, std::void_t<decltype(M::history)>> : std::true_type {};
 
@@ -199,6 +208,7 @@ template <class M> const plab_contact_model_desc* contact_model_desc() {
         if constexpr (detail::has_persist<M>::value) x.persist_slot = M::persist_slot;
         if constexpr (detail::has_rates<M>::value) x.rates_stage = M::rates_stage ? 1u : 0u;
         if constexpr (detail::has_flags<M>::value) x.flags = M::flags;
+        if constexpr (detail::has_io<M>::value) x.io = M::io | PLAB_IO_DECLARED;
         return x;
     }();
     return &d;

@@ -40,7 +40,7 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
         const double dist = d.distance[a], gap = dist - ri - rj;  // the range test's arithmetic
         d.gap[a] = gap;
-        const Vec normal = dist > 0 ? Vec((B.position[j] - B.position[i]) / dist) : Vec::UnitX();
+        const Vec normal = centre_normal(B.position[i], B.position[j], dist);
         d.end1[a] = i;
         d.end2[a] = j;
         put(d.normal, a, normal);  // (no contact point: readers recompute it, World::contact_point)

@@ -27,19 +27,23 @@ inline std::uint64_t bits(double v) {
 std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                                    DenseBatch& d) {
     ContactSet& s = *sets_[si];
-    std::uint8_t* live = live_[si].data();
     const RangeTest in_range(inst);
     const std::size_t stride = std::size_t(inst.stride);
-    const auto& B = bodies;
+    // raw pointers: the byte stores below (flags) may alias anything, so
+    // the compiler would otherwise reload every column's address per row
+    const std::int32_t *end1 = s.end1.data(), *end2 = s.end2.data();
+    const double *r1 = s.radius1.data(), *r2 = s.radius2.data(), *history = s.history.data();
+    const Vec* x = bodies.position.data();
+    double* gap_col = s.gap.data();
+    std::uint8_t *active_col = s.active.data(), *live = live_[si].data();
     std::uint32_t idle[kContactBatch];
     std::size_t n_active = 0, n_idle = 0;
     for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
-        const std::int32_t i = s.end1[k], j = s.end2[k];
-        const double dist = (B.position[j] - B.position[i]).norm();
-        const double gap = dist - s.radius1[k] - s.radius2[k];
-        const bool active = in_range(s.history, k, dist, gap);
-        s.gap[k] = gap;  // (the centre distance of a ball–ball row is read by the model only)
-        s.active[k] = active;
+        const double dist = (x[end2[k]] - x[end1[k]]).norm();
+        const double gap = dist - r1[k] - r2[k];
+        const bool active = in_range(history, k, dist, gap);
+        gap_col[k] = gap;  // (the centre distance of a ball–ball row is read by the model only)
+        active_col[k] = active;
         d.gap[n_active] = gap;
         d.distance[n_active] = dist;
         d.row[n_active] = std::uint32_t(k);
@@ -62,6 +66,11 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
     const ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);
     const auto& B = bodies;
+    // only the optional inputs the model reads (abi.h, PLAB_IO_*)
+    d.poison_unread(inst);
+    const bool spin = inst.uses(PLAB_IO_REL_ANGULAR_VELOCITY), radii = inst.uses(PLAB_IO_RADII),
+               masses = inst.uses(PLAB_IO_MASSES), eff_mass = inst.uses(PLAB_IO_EFF_MASS),
+               eff_radius = inst.uses(PLAB_IO_EFF_RADIUS);
     bool exceeded = false;
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];
@@ -73,24 +82,27 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         put(d.normal, a, p.normal);
         put(d.point, a, p.point);
         put(d.rel_velocity, a, p.rel_velocity);
-        put(d.rel_angular_velocity, a, p.rel_angular_velocity);
-        d.radius1[a] = ri;
-        d.radius2[a] = rj;
+        if (spin) put(d.rel_angular_velocity, a, p.rel_angular_velocity);
+        if (radii) { d.radius1[a] = ri; d.radius2[a] = rj; }
         // masses from the bodies (in cache) rather than the set's columns,
         // with fill_pair_constants()'s arithmetic
         const double mi = B.mass[i], mj = B.mass[j];
-        d.mass1[a] = mi;
-        d.mass2[a] = mj;
-        d.eff_mass[a] = mi * mj / (mi + mj);
-        d.eff_radius[a] = ri * rj / (ri + rj);
+        if (masses) { d.mass1[a] = mi; d.mass2[a] = mj; }
+        if (eff_mass) d.eff_mass[a] = mi * mj / (mi + mj);
+        if (eff_radius) d.eff_radius[a] = ri * rj / (ri + rj);
         for (std::size_t h = 0; h < stride; ++h) d.history[a * stride + h] = s.history[k * stride + h];  // a loop, not a memmove call, for a few doubles
         exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
     }
     d.count = std::uint32_t(n_active);
-    // the outputs a model adds to start from zero (dt limit: no limit)
-    for (double* v : {d.force, d.moment1, d.moment2}) std::fill_n(v, 3 * n_active, 0.0);
-    for (double* v : {d.strain, d.slip, d.dashpot, d.k_t, d.k_r, d.break_energy}) std::fill_n(v, n_active, 0.0);
-    std::fill_n(d.dt_limit, n_active, kInf);
+    // the outputs a model adds to start from zero (dt limit: no limit); the
+    // optional ones only when it writes them
+    std::fill_n(d.force, 3 * n_active, 0.0);
+    for (double* v : {d.strain, d.slip, d.dashpot, d.k_t}) std::fill_n(v, n_active, 0.0);
+    if (inst.uses(PLAB_IO_MOMENTS))
+        for (double* v : {d.moment1, d.moment2}) std::fill_n(v, 3 * n_active, 0.0);
+    if (inst.uses(PLAB_IO_STIFFNESS_ROTATIONAL)) std::fill_n(d.k_r, n_active, 0.0);
+    if (inst.uses(PLAB_IO_BREAK_ENERGY)) std::fill_n(d.break_energy, n_active, 0.0);
+    if (inst.uses(PLAB_IO_DT_LIMIT)) std::fill_n(d.dt_limit, n_active, kInf);
     return exceeded;
 }
 
@@ -140,6 +152,7 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     const std::size_t stride = std::size_t(inst.stride);
     double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
     const std::int32_t lo = ch.lo;
+    const bool pure_moments = inst.uses(PLAB_IO_MOMENTS), breaks = inst.uses(PLAB_IO_BREAK_ENERGY);
     double strain = 0, slip = 0, dashpot = 0, broken = 0;
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
@@ -152,10 +165,11 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
         strain += d.strain[a];
         slip += d.slip[a];
         dashpot += d.dashpot[a];
-        broken += d.break_energy[a];
+        if (breaks) broken += d.break_energy[a];
         const Vec f2(&d.force[3 * a]), point(&d.point[3 * a]);
-        const Vec m1 = (point - B.position[d.end1[a]]).cross(-f2) + Vec(&d.moment1[3 * a]);
-        const Vec m2 = (point - B.position[d.end2[a]]).cross(f2) + Vec(&d.moment2[3 * a]);
+        Vec m1 = (point - B.position[d.end1[a]]).cross(-f2);
+        Vec m2 = (point - B.position[d.end2[a]]).cross(f2);
+        if (pure_moments) { m1 += Vec(&d.moment1[3 * a]); m2 += Vec(&d.moment2[3 * a]); }
         double* f1m1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
         double* f2m2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
         for (int c = 0; c < 3; ++c) { f1m1[c] -= f2[c]; f1m1[3 + c] += m1[c]; }
@@ -163,13 +177,22 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     }
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = 0;
+    if (d.count == 0) return;  // no row to report: what the columns hold is not read
     HeldOutputs& held = held_[si][begin / kContactBatch];
     const std::size_t end = std::min(s.size(), begin + kContactBatch);
-    write_back(s.moment1.data(), 3, d.moment1, d, begin, end, held, 0);
-    write_back(s.moment2.data(), 3, d.moment2, d, begin, end, held, 1);
+    // an output the model does not write holds its neutral value (abi.h, PLAB_IO_*)
+    if (pure_moments) {
+        write_back(s.moment1.data(), 3, d.moment1, d, begin, end, held, 0);
+        write_back(s.moment2.data(), 3, d.moment2, d, begin, end, held, 1);
+    } else {
+        hold_value(s.moment1.data(), 3, 0.0, begin, end, held, 0);
+        hold_value(s.moment2.data(), 3, 0.0, begin, end, held, 1);
+    }
     write_back(s.k_t.data(), 1, d.k_t, d, begin, end, held, 2);
-    write_back(s.k_r.data(), 1, d.k_r, d, begin, end, held, 3);
-    write_back(s.dt_limit.data(), 1, d.dt_limit, d, begin, end, held, 4);
+    if (inst.uses(PLAB_IO_STIFFNESS_ROTATIONAL)) write_back(s.k_r.data(), 1, d.k_r, d, begin, end, held, 3);
+    else hold_value(s.k_r.data(), 1, 0.0, begin, end, held, 3);
+    if (inst.uses(PLAB_IO_DT_LIMIT)) write_back(s.dt_limit.data(), 1, d.dt_limit, d, begin, end, held, 4);
+    else hold_value(s.dt_limit.data(), 1, kInf, begin, end, held, 4);
 }
 
 // One output column (`width` doubles per row) back from the packed rows of
@@ -184,15 +207,20 @@ void World::write_back(double* col, std::size_t width, const double* dense, cons
     const double u = dense[0];
     bool same = true;
     for (std::size_t i = 1; i < n; ++i) same &= bits(dense[i]) == bits(u);
-    if (same && held.uniform[which] && bits(held.value[which]) == bits(u)) return;
-    held.uniform[which] = same;
-    held.value[which] = u;
-    if (same) {
-        std::fill(col + width * begin, col + width * end, u);
-        return;
-    }
+    if (same) return hold_value(col, width, u, begin, end, held, which);
+    held.uniform[which] = false;
     for (std::size_t a = 0; a < d.count; ++a)
         for (std::size_t c = 0; c < width; ++c) col[width * d.row[a] + c] = dense[width * a + c];
+}
+
+// Rows [begin, end) of an output column filled with one value, unless the
+// last fill already left it there.
+void World::hold_value(double* col, std::size_t width, double u, std::size_t begin, std::size_t end,
+                       HeldOutputs& held, int which) {
+    if (held.uniform[which] && bits(held.value[which]) == bits(u)) return;
+    held.uniform[which] = true;
+    held.value[which] = u;
+    std::fill(col + width * begin, col + width * end, u);
 }
 
 } // namespace plab

@@ -10,6 +10,7 @@
 #include "world.hpp"
 
 #include <iterator>
+#include <limits>
 #include <memory>
 
 namespace plab {
@@ -39,6 +40,28 @@ struct DenseBatch {
         std::fill_n(active, N, std::uint8_t(1));
         std::fill_n(discard_columns, kMaxDiscarded, &discarded[0]);
     }
+    // The optional inputs (PLAB_IO_*) a model does not read are not packed:
+    // their columns hold NaN instead, so a law that reads one anyway gives a
+    // non-finite force, which the host reports by model name. `poisoned`
+    // marks the columns that hold NaN in every row; one scene usually has
+    // one model per batch kind, so the NaN are written once.
+    std::uint32_t poisoned = 0;
+    void poison_unread(const ModelInstance& inst) {
+        const struct { std::uint32_t bit; double* cols[2]; std::size_t width; } inputs[] = {
+            {PLAB_IO_REL_ANGULAR_VELOCITY, {rel_angular_velocity, nullptr}, 3},
+            {PLAB_IO_RADII, {radius1, radius2}, 1},
+            {PLAB_IO_MASSES, {mass1, mass2}, 1},
+            {PLAB_IO_EFF_MASS, {eff_mass, nullptr}, 1},
+            {PLAB_IO_EFF_RADIUS, {eff_radius, nullptr}, 1},
+        };
+        for (const auto& in : inputs) {
+            if (inst.uses(in.bit)) { poisoned &= ~in.bit; continue; }
+            if (poisoned & in.bit) continue;
+            for (double* c : in.cols)
+                if (c) std::fill_n(c, in.width * N, std::numeric_limits<double>::quiet_NaN());
+            poisoned |= in.bit;
+        }
+    }
     // this thread's scratch: allocated on its first use, then reused every cycle
     static DenseBatch& for_this_thread(std::size_t history_stride) {
         thread_local std::unique_ptr<DenseBatch> d;
@@ -66,9 +89,12 @@ struct RangeTest {
     explicit RangeTest(const ModelInstance& inst)
         : by_distance(inst.desc->range_kind == PLAB_RANGE_DISTANCE), persist(inst.desc->persist_slot),
           range(inst.range), stride(std::size_t(inst.stride)) {}
-    bool operator()(const std::vector<double>& history, std::size_t k, double dist, double gap) const {
+    bool operator()(const double* history, std::size_t k, double dist, double gap) const {
         const bool bonded = persist >= 0 && history[k * stride + std::size_t(persist)] > 0;
         return bonded || (by_distance ? dist <= range : gap <= range);
+    }
+    bool operator()(const std::vector<double>& history, std::size_t k, double dist, double gap) const {
+        return (*this)(history.data(), k, dist, gap);
     }
 };
 
@@ -78,11 +104,16 @@ struct RangeTest {
 struct PairKinematics {
     Vec normal, point, rel_velocity, rel_angular_velocity;
 };
+// The unit vector from xi to xj at centre distance dist: one division, not
+// three (every ball–ball path takes it from here, so all give the same bits).
+inline Vec centre_normal(const Vec& xi, const Vec& xj, double dist) {
+    return dist > 0 ? Vec((xj - xi) * (1.0 / dist)) : Vec::UnitX();
+}
 inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
                                            double gap) {
     const Vec& xi = B.position[i];
     PairKinematics p;
-    p.normal = dist > 0 ? Vec((B.position[j] - xi) / dist) : Vec::UnitX();
+    p.normal = centre_normal(xi, B.position[j], dist);
     p.point = xi + p.normal * (ri + 0.5 * gap);
     const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(p.point - B.position[j]);
     const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(p.point - xi);

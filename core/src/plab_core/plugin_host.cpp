@@ -113,6 +113,7 @@ std::vector<std::string> check_model_desc(const plab_contact_model_desc& d) {
     if (d.persist_slot < -1 || d.persist_slot >= int32_t(d.history_count))
         bad.push_back("persist_slot must be -1 or the index of a history slot");
     if (d.flags & ~uint32_t(PLAB_MODEL_KNOWN_FLAGS)) bad.push_back("flags has bits this host does not know (abi.h PLAB_MODEL_*)");
+    if (d.io & ~uint32_t(PLAB_IO_KNOWN_BITS)) bad.push_back("io has bits this host does not know (abi.h PLAB_IO_*)");
     for (uint32_t i = 0; d.history && i < d.history_count; ++i) {
         if (!d.history[i].name || !*d.history[i].name) bad.push_back("history slot " + std::to_string(i) + " has no name");
         if (d.history[i].swap_rule > PLAB_SWAP_NEGATE)
@@ -232,9 +233,10 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
 
 int PluginHost::register_model(const plab_contact_model_desc* d) {
     if (!d) { problems_.push_back("register_contact_model(NULL)"); return 1; }
-    if (loading_version_ < 4) {  // its description ends before `flags` (abi.h, version 4)
+    if (loading_version_ < 5) {  // its description ends before `flags` (ABI 4) or `io` (ABI 5)
         plab_contact_model_desc full{};
-        std::memcpy(&full, d, offsetof(plab_contact_model_desc, flags));
+        std::memcpy(&full, d, loading_version_ < 4 ? offsetof(plab_contact_model_desc, flags)
+                                                   : offsetof(plab_contact_model_desc, io));
         d = &upgraded_.emplace_back(full);
     }
     auto bad = check_model_desc(*d);

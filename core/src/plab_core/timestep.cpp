@@ -6,7 +6,9 @@
 
 #include "error.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace plab {
 
@@ -16,6 +18,20 @@ struct Probe {
     double mass = kInf, radius = 0, inertia = 0;
     bool any = false;
 };
+
+// The probe's force must be finite with the undeclared inputs NaN, and the
+// undeclared outputs must still hold their NaN sentinels.
+template <class Outputs>
+void check_declared_io(const ModelInstance& inst, const double* force, const Outputs& outputs) {
+    if (!(inst.desc->io & PLAB_IO_DECLARED)) return;
+    const std::string who = "contact model '" + inst.model + "' ";
+    if (!(std::isfinite(force[0]) && std::isfinite(force[1]) && std::isfinite(force[2])))
+        throw PluginError(who + "gives a non-finite force on a nominal touching contact when the inputs its `io` does not "
+                                "declare are NaN: its law reads one of them; add it to `io` (abi.h, PLAB_IO_*)");
+    for (const auto& o : outputs)
+        if (!inst.uses(o.bit) && !std::all_of(o.value, o.value + o.width, [](double v) { return std::isnan(v); }))
+            throw PluginError(who + "writes " + o.column + " but its `io` does not declare it; add it to `io` (abi.h, PLAB_IO_*)");
+}
 
 StableStep probe_contact(const ModelInstance& inst, int dim, const Probe& a, const Probe& b, bool wall) {
     const double gap = inst.desc->range_kind == PLAB_RANGE_GAP ? std::min(inst.range, 0.0) : 0.0;
@@ -55,8 +71,29 @@ StableStep probe_contact(const ModelInstance& inst, int dim, const Probe& a, con
     double released = 0;
     batch.break_energy = &released;
     batch.stage = PLAB_STAGE_FORCES;
+    // a model that declares its optional inputs and outputs (abi.h, PLAB_IO_*)
+    // gets NaN in the others, as in a packed batch, and NaN sentinels in the
+    // outputs it does not write: a mistake in the declaration shows here
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    double nan3[3] = {nan, nan, nan}, r1 = a.radius, m1_in = a.mass;
+    if (!inst.uses(PLAB_IO_REL_ANGULAR_VELOCITY)) batch.rel_angular_velocity = nan3;
+    if (!inst.uses(PLAB_IO_RADII)) { r1 = nan; r2 = nan; }
+    if (!inst.uses(PLAB_IO_MASSES)) { m1_in = nan; mass2 = nan; }
+    if (!inst.uses(PLAB_IO_EFF_MASS)) eff_mass = nan;
+    if (!inst.uses(PLAB_IO_EFF_RADIUS)) eff_radius = nan;
+    batch.radius1 = &r1;
+    batch.mass1 = &m1_in;
+    const struct { std::uint32_t bit; double* value; int width; const char* column; } outputs[] = {
+        {PLAB_IO_MOMENTS, m1, 3, "moment1"}, {PLAB_IO_MOMENTS, m2, 3, "moment2"},
+        {PLAB_IO_STIFFNESS_ROTATIONAL, &kr, 1, "stiffness_rotational"}, {PLAB_IO_DT_LIMIT, &dtl, 1, "dt_limit"},
+        {PLAB_IO_BREAK_ENERGY, &released, 1, "break_energy"}};
+    for (const auto& o : outputs)
+        if (!inst.uses(o.bit)) std::fill_n(o.value, o.width, nan);
     if (inst.desc->compute(inst.state, inst.props.data(), &batch) != 0)
         throw PluginError("contact model '" + inst.model + "' failed on a nominal touching contact");
+    check_declared_io(inst, force, outputs);
+    for (const auto& o : outputs)  // what the host takes for an output the model does not write
+        if (!inst.uses(o.bit)) std::fill_n(o.value, o.width, o.bit == PLAB_IO_DT_LIMIT ? kInf : 0.0);
     StableStep out;
     auto consider = [&](double dt_candidate, const std::string& why) {
         if (dt_candidate < out.critical) out = {dt_candidate, why};

@@ -77,6 +77,9 @@ struct ModelInstance {
     // value (std::out_of_range when the model has none of that name).
     int history_slot(const std::string& name) const;
     double property(const std::string& name) const;
+    // whether the model reads optional input / writes optional output
+    // `bit` (PLAB_IO_*): all of them unless it declared which (abi.h, ABI 5)
+    bool uses(std::uint32_t bit) const { return !(desc->io & PLAB_IO_DECLARED) || (desc->io & bit); }
 };
 
 struct PassInstance {
@@ -359,6 +362,8 @@ private:
                             std::size_t begin, const Chunk& chunk);
     void write_back(double* column, std::size_t width, const double* dense, const DenseBatch& d, std::size_t begin,
                     std::size_t end, HeldOutputs& held, int which);
+    static void hold_value(double* column, std::size_t width, double value, std::size_t begin, std::size_t end,
+                           HeldOutputs& held, int which);
     int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
                    const double* const* read_cols, bool clear);
     [[noreturn]] void model_failed(const ModelInstance& inst) const;
