@@ -170,8 +170,8 @@ json cost_drivers(const ModelInstance& inst, const Bodies& B) {
             ball_active += !s->with_wall;
             // masses from the bodies: a packed set keeps no mass columns (a wall's is infinite)
             const double m = s->with_wall ? B.mass[s->end1[k]] : std::min(B.mass[s->end1[k]], B.mass[s->end2[k]]);
-            if (s->k_t[k] > 0) stable = std::min(stable, std::sqrt(m / s->k_t[k]));
-            stable = std::min(stable, s->dt_limit[k]);
+            if (s->k_t_at(k) > 0) stable = std::min(stable, std::sqrt(m / s->k_t_at(k)));
+            stable = std::min(stable, s->dt_limit_at(k));
         }
     json j = {{"model", inst.model},
               {"candidate_pairs", inst.balls.size() + inst.walls.size()},

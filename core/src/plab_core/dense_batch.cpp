@@ -180,19 +180,20 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     if (d.count == 0) return;  // no row to report: what the columns hold is not read
     HeldOutputs& held = held_[si][begin / kContactBatch];
     const std::size_t end = std::min(s.size(), begin + kContactBatch);
-    // an output the model does not write holds its neutral value (abi.h, PLAB_IO_*)
+    // an output the model does not write is not kept by a packed set
+    // (ContactSet::keeps), or holds its neutral value (abi.h, PLAB_IO_*)
     if (pure_moments) {
         write_back(s.moment1.data(), 3, d.moment1, d, begin, end, held, 0);
         write_back(s.moment2.data(), 3, d.moment2, d, begin, end, held, 1);
-    } else {
+    } else if (!s.moment1.empty()) {
         hold_value(s.moment1.data(), 3, 0.0, begin, end, held, 0);
         hold_value(s.moment2.data(), 3, 0.0, begin, end, held, 1);
     }
     write_back(s.k_t.data(), 1, d.k_t, d, begin, end, held, 2);
     if (inst.uses(PLAB_IO_STIFFNESS_ROTATIONAL)) write_back(s.k_r.data(), 1, d.k_r, d, begin, end, held, 3);
-    else hold_value(s.k_r.data(), 1, 0.0, begin, end, held, 3);
+    else if (!s.k_r.empty()) hold_value(s.k_r.data(), 1, 0.0, begin, end, held, 3);
     if (inst.uses(PLAB_IO_DT_LIMIT)) write_back(s.dt_limit.data(), 1, d.dt_limit, d, begin, end, held, 4);
-    else hold_value(s.dt_limit.data(), 1, kInf, begin, end, held, 4);
+    else if (!s.dt_limit.empty()) hold_value(s.dt_limit.data(), 1, kInf, begin, end, held, 4);
 }
 
 // One output column (`width` doubles per row) back from the packed rows of

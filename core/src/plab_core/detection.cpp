@@ -28,11 +28,25 @@ void fill(std::vector<T>& v, std::size_t n, T x) {
 }
 } // namespace
 
+bool ContactSet::keeps(std::uint32_t io_bit) const {
+    if (!packed) return true;
+    if (model_flags & PLAB_MODEL_FORCE_AT_CENTRES) return io_bit == PLAB_IO_DT_LIMIT;  // no moment, no stiffness
+    return io_bit == 0 || !(model_io & PLAB_IO_DECLARED) || (model_io & io_bit);
+}
+
 void ContactSet::resize_columns(std::size_t n, int n_acc) {
     fill(active, n, std::uint8_t(0));
     fill(interior, with_wall ? n : 0, std::uint8_t(1));
-    for (auto* v : {&force, &moment1, &moment2}) fill(*v, 3 * n, 0.0);
-    for (auto* v : {&gap, &radius1, &radius2, &k_t, &k_r, &dt_limit}) fill(*v, n, 0.0);
+    fill(force, 3 * n, 0.0);
+    for (auto* v : {&gap, &radius1, &radius2}) fill(*v, n, 0.0);
+    // outputs the model writes; the others not kept at all (keeps())
+    const struct { std::vector<double>* col; std::size_t width; std::uint32_t bit; } outputs[] = {
+        {&moment1, 3, PLAB_IO_MOMENTS}, {&moment2, 3, PLAB_IO_MOMENTS}, {&k_t, 1, 0},
+        {&k_r, 1, PLAB_IO_STIFFNESS_ROTATIONAL}, {&dt_limit, 1, PLAB_IO_DT_LIMIT}};
+    for (const auto& o : outputs) {
+        if (keeps(o.bit)) fill(*o.col, o.width * n, 0.0);
+        else std::vector<double>().swap(*o.col);
+    }
     // what only the model reads, or only per-batch sums need: none when packed
     const std::size_t m = packed ? 0 : n;
     for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) fill(*v, 3 * m, 0.0);

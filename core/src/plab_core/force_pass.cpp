@@ -372,8 +372,8 @@ void World::sum_stiffness() const {
                 } else {
                     arm2 = (Vec(&s.point[3 * k]) - bodies.position[i]).squaredNorm();
                 }
-                kt += s.k_t[k];
-                kr += s.k_r[k] + s.k_t[k] * arm2;
+                kt += s.k_t_at(k);
+                kr += s.k_r_at(k) + s.k_t_at(k) * arm2;
             }
             k_trans_[i] = kt;
             k_rot_[i] = kr;
@@ -571,8 +571,8 @@ StableStep World::stable_timestep() {
     for (auto& inst : instances_)
         for (const ContactSet* s : {&inst->balls, &inst->walls})
             for (std::size_t k = 0; k < s->size(); ++k)
-                if (s->active[k] && s->dt_limit[k] < best.critical) {
-                    best.critical = s->dt_limit[k];
+                if (s->active[k] && s->dt_limit_at(k) < best.critical) {
+                    best.critical = s->dt_limit_at(k);
                     limit_model = inst.get(); limit_set = s; limit_row = k;
                     ball = bodies.size();
                 }
@@ -602,7 +602,7 @@ std::string World::stiffest_model(std::size_t i) const {
         const std::uint32_t k = entries_[e].row & ~end2_bit;
         if (!s.active[k]) continue;
         for (std::size_t m = 0; m < instances_.size(); ++m)
-            if (set_owner_[entries_[e].set] == instances_[m].get()) k_of[m] += s.k_t[k];
+            if (set_owner_[entries_[e].set] == instances_[m].get()) k_of[m] += s.k_t_at(k);
     }
     const auto top = std::max_element(k_of.begin(), k_of.end());
     return top == k_of.end() || *top <= 0 ? std::string("(none)") : instances_[std::size_t(top - k_of.begin())]->model;

@@ -87,6 +87,10 @@ int World::add_instance(const std::string& model, std::vector<double> props) {
         inst->fields_accumulated.push_back(
             register_field(d->fields_accumulated[f].name, d->fields_accumulated[f].default_value));
     inst->walls.with_wall = true;
+    for (ContactSet* s : {&inst->balls, &inst->walls}) {
+        s->model_io = d->io;
+        s->model_flags = d->flags;
+    }
     instances_.push_back(std::move(inst));
     mark_dirty();
     return int(instances_.size()) - 1;
@@ -421,7 +425,7 @@ std::string World::non_finite_contact(std::size_t body) const {
             for (std::size_t k = 0; k < set->size(); ++k) {
                 if (!set->active[k] || (std::size_t(set->end1[k]) != body && (set->with_wall || std::size_t(set->end2[k]) != body)))
                     continue;
-                const Vec f(&set->force[3 * k]), m1(&set->moment1[3 * k]), m2(&set->moment2[3 * k]);
+                const Vec f(&set->force[3 * k]), m1 = set->moment1_at(k), m2 = set->moment2_at(k);
                 if (f.allFinite() && m1.allFinite() && m2.allFinite()) continue;
                 std::ostringstream s;
                 s << "contact model '" << inst->model << "' returned a non-finite force or moment (a contact model returned NaN) for the contact of ball id "

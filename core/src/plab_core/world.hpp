@@ -53,6 +53,20 @@ struct ContactSet {
 
     std::size_t size() const { return end1.size(); }
     void resize_columns(std::size_t n, int n_accumulated);
+
+    // The owning model's io and flags (abi.h; set once, World::add_instance).
+    // A packed set does not keep the output columns its model never writes:
+    // a model that declares its io and not PLAB_IO_MOMENTS has no moment
+    // columns (48 B per row), and so on; a centre-force model (SPH) keeps
+    // only force and dt_limit. Readers take the neutral value of a column
+    // not kept, through these accessors.
+    std::uint32_t model_io = 0, model_flags = 0;
+    bool keeps(std::uint32_t io_bit) const;  // PLAB_IO_MOMENTS, _STIFFNESS_ROTATIONAL, _DT_LIMIT, or 0 for k_t
+    double k_t_at(std::size_t k) const { return k_t.empty() ? 0.0 : k_t[k]; }
+    double k_r_at(std::size_t k) const { return k_r.empty() ? 0.0 : k_r[k]; }
+    double dt_limit_at(std::size_t k) const { return dt_limit.empty() ? kInf : dt_limit[k]; }
+    Vec moment1_at(std::size_t k) const { return moment1.empty() ? Vec(Vec::Zero()) : Vec(&moment1[3 * k]); }
+    Vec moment2_at(std::size_t k) const { return moment2.empty() ? Vec(Vec::Zero()) : Vec(&moment2[3 * k]); }
 };
 
 struct DenseBatch;  // dense_batch.hpp: the active rows of one batch, packed for the model
