@@ -382,20 +382,9 @@ void World::sum_stiffness() const {
     stiffness_valid_ = true;
 }
 
-// Body i's force and moment after the contact sums: field accumulations,
-// local and viscous damping (their work added to local_work), the 2D
-// projection; true when its state may be non-finite.
-bool World::finish_body_force(std::size_t i, double& local_work) {
-    constexpr std::uint32_t end2_bit = 1u << 31;
-    Vec f = bodies.force[i], m = bodies.moment[i];
-    if (any_accumulation_)  // fields of rates-stage models are summed after that stage
-        for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-            const Entry en = entries_[e];
-            const ContactSet& s = *sets_[en.set];
-            const std::uint32_t k = en.row & ~end2_bit;
-            const ModelInstance& owner = *set_owner_[en.set];
-            if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
-        }
+// PFC local damping and mass-proportional viscous damping of body i's force
+// and moment (their work added to local_work).
+void World::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
     const double alpha = bodies.local_damping[i];
     if (alpha > 0) {  // PFC local damping: -alpha |F| sign(v), per component
         for (int c = 0; c < 3; ++c) {
@@ -415,48 +404,64 @@ bool World::finish_body_force(std::size_t i, double& local_work) {
         m += md;
         local_work -= (fd.dot(bodies.velocity[i]) + md.dot(bodies.angular_velocity[i])) * last_dt;
     }
-    if (dim == 2) { f.z() = 0; m.x() = 0; m.y() = 0; }
-    bodies.force[i] = f;
-    bodies.moment[i] = m;
-    // NaN or Inf anywhere makes the sum non-finite; check_finite() finds which
-    return !std::isfinite(f.sum() + m.sum() + bodies.position[i].sum() + bodies.velocity[i].sum());
 }
 
-// Sum contact forces and moments onto bodies (plus gravity, applied loads and
-// local damping), each body adding the chunks' partial sums in chunk order.
+// Sum contact forces and moments onto bodies (plus gravity and applied
+// loads), each body adding the chunks' partial sums in chunk order; then
+// field accumulations, damping and the 2D projection. True when a body's
+// state may be non-finite.
 bool World::reduce() {
+    constexpr std::uint32_t end2_bit = 1u << 31;
     const std::size_t n = bodies.size();
     for (auto& inst : instances_)
         if (!inst->desc->rates_stage)
             for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
     if (!swept_)  // force_sweep() summed the rows already
         for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_chunks(si);
-    double local_work = 0;
     bool non_finite = false;
     // blocks of bodies: the contact sums are added chunk by chunk (in chunk
     // order, the same for any thread count) over the block, then each body
     // of the block gets its damping and checks
-    constexpr std::size_t block = 1024;
-    const std::size_t n_blocks = (n + block - 1) / block;
-#pragma omp parallel for schedule(static) reduction(+ : local_work) reduction(| : non_finite) if (n >= parallel_min)
+    const std::size_t n_blocks = body_blocks();
+    block_scratch_.assign(n_blocks, 0.0);  // local damping work per block
+    Vec* force = bodies.force.data();
+    Vec* moment = bodies.moment.data();
+#pragma omp parallel for schedule(static) reduction(| : non_finite) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_blocks; ++b) {
-        const std::size_t i0 = b * block, i1 = std::min(n, i0 + block);
+        const std::size_t i0 = b * kBodyBlock, i1 = std::min(n, i0 + kBodyBlock);
         for (std::size_t i = i0; i < i1; ++i) {
-            bodies.force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
-            bodies.moment[i] = bodies.applied_moment[i];
+            force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
+            moment[i] = bodies.applied_moment[i];
         }
         for (const Chunk& ch : chunks_) {
             const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
             const double* p = partial_fm_.data() + ch.offset;
             for (std::size_t i = c0; i < c1; ++i) {
                 const double* pi = p + kSlotDoubles * (i - std::size_t(ch.lo));
-                bodies.force[i] += Vec(pi);
-                bodies.moment[i] += Vec(pi + 3);
+                force[i] += Vec(pi);
+                moment[i] += Vec(pi + 3);
             }
         }
-        for (std::size_t i = i0; i < i1; ++i)
-            non_finite |= finish_body_force(i, local_work);
+        double local_work = 0, finite = 0;  // finite stays 0 unless some value is Inf or NaN
+        for (std::size_t i = i0; i < i1; ++i) {
+            if (any_accumulation_)  // fields of rates-stage models are summed after that stage
+                for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
+                    const Entry en = entries_[e];
+                    const ContactSet& s = *sets_[en.set];
+                    const std::uint32_t k = en.row & ~end2_bit;
+                    const ModelInstance& owner = *set_owner_[en.set];
+                    if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
+                }
+            if (bodies.local_damping[i] > 0 || bodies.viscous_damping[i] > 0) damp_body(i, force[i], moment[i], local_work);
+            if (dim == 2) { force[i].z() = 0; moment[i].x() = 0; moment[i].y() = 0; }
+            // x * 0 is 0 for a finite x and NaN otherwise; check_finite() finds which
+            finite += (force[i].sum() + moment[i].sum() + bodies.position[i].sum() + bodies.velocity[i].sum()) * 0.0;
+        }
+        block_scratch_[b] = local_work;
+        non_finite |= !(finite == 0);
     }
+    double local_work = 0;
+    for (double w : block_scratch_) local_work += w;
     energies.local_damping += local_work;
     stiffness_valid_ = false;
 

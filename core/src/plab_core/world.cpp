@@ -196,6 +196,8 @@ void World::prepare() {
     const double dt = last_dt;
     last_dt = 0;
     force_pass();
+    cache_inverse_masses();
+    body_energies(0.0);
     sum_energies(0.0);  // states (kinetic, strain) at this instant; no flow
     last_dt = dt;
     prepared_ = true;
@@ -299,7 +301,7 @@ void World::advance() {
     force_pass();
     {
         PhaseTimer t{phase_seconds[ph_motion]};
-        kick(0.5 * dt);
+        kick(0.5 * dt, true);
         sum_energies(dt);
     }
     {
@@ -376,29 +378,134 @@ void World::force_pass() {
     }
 }
 
-void World::kick(double h) {
-    const std::size_t n = bodies.size();
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint8_t fix = bodies.fixity[i];
-        const double inv_m = 1.0 / bodies.mass[i], inv_i = 1.0 / bodies.inertia[i];
+namespace {
+
+// What body i adds to the energy sums at its synchronised velocities (PFC's
+// bookkeeping): kinetic energy, and the work over the step dt of its applied
+// loads and, along explicitly fixed DOFs, of the reaction that keeps the
+// velocity.
+inline void add_body_energy(const Bodies& B, std::size_t i, double dt, std::uint8_t explicit_fix, double& kinetic,
+                            double& boundary) {
+    const Vec& v = B.velocity[i];
+    const Vec& w = B.angular_velocity[i];
+    kinetic += 0.5 * B.mass[i] * v.squaredNorm() + 0.5 * B.inertia[i] * w.squaredNorm();
+    boundary += B.applied_force[i].dot(v) * dt + B.applied_moment[i].dot(w) * dt;
+    if (explicit_fix)
         for (int c = 0; c < 3; ++c) {
-            if (!(fix & (dof_x << c))) bodies.velocity[i][c] += h * bodies.force[i][c] * inv_m;
-            if (!(fix & (dof_rx << c))) bodies.angular_velocity[i][c] += h * bodies.moment[i][c] * inv_i;
+            if (explicit_fix & (dof_x << c)) boundary -= B.force[i][c] * v[c] * dt;
+            if (explicit_fix & (dof_rx << c)) boundary -= B.moment[i][c] * w[c] * dt;
+        }
+}
+
+// Half a kick (thesis eq. 33: v += h F/m, w += h M/I) of bodies [i0, i1)
+// with every DOF of their dimension free (2D: x, y and the spin about z),
+// without a branch per component; with Energies, their energy sums too.
+template <int Dim, bool Energies>
+void kick_free_block(Bodies& B, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
+                     double& kinetic, double& boundary) {
+    for (std::size_t i = i0; i < i1; ++i) {
+        Vec& v = B.velocity[i];
+        Vec& w = B.angular_velocity[i];
+        const Vec& f = B.force[i];
+        const Vec& m = B.moment[i];
+        if (Dim == 3) {
+            for (int c = 0; c < 3; ++c) {
+                v[c] += h * f[c] * inv_m[i];
+                w[c] += h * m[c] * inv_i[i];
+            }
+        } else {
+            v[0] += h * f[0] * inv_m[i];
+            v[1] += h * f[1] * inv_m[i];
+            w[2] += h * m[2] * inv_i[i];
+        }
+        if (Energies) add_body_energy(B, i, 2 * h, 0, kinetic, boundary);
+    }
+}
+
+// The same for bodies that may have fixed DOFs: a fixed component keeps its velocity.
+void kick_block(Bodies& B, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
+                bool energies, double& kinetic, double& boundary) {
+    const std::uint8_t implicit = B.implicit_fixity();
+    for (std::size_t i = i0; i < i1; ++i) {
+        const std::uint8_t fix = B.fixity[i];
+        for (int c = 0; c < 3; ++c) {
+            if (!(fix & (dof_x << c))) B.velocity[i][c] += h * B.force[i][c] * inv_m[i];
+            if (!(fix & (dof_rx << c))) B.angular_velocity[i][c] += h * B.moment[i][c] * inv_i[i];
+        }
+        if (energies) add_body_energy(B, i, 2 * h, fix & ~implicit, kinetic, boundary);
+    }
+}
+
+} // namespace
+
+void World::cache_inverse_masses() {
+    const std::size_t n = bodies.size();
+    inv_mass_.resize(n);
+    inv_inertia_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        inv_mass_[i] = 1.0 / bodies.mass[i];
+        inv_inertia_[i] = 1.0 / bodies.inertia[i];
+    }
+}
+
+// Half a kick for every body; the closing kick of a step (`closing`) also
+// takes the per-block energy sums while the velocities are at hand, for
+// sum_energies().
+void World::kick(double h, bool closing) {
+    const std::size_t n = bodies.size(), n_blocks = body_blocks();
+    if (inv_mass_.size() != n) cache_inverse_masses();  // e.g. a world just loaded from a checkpoint
+    block_kinetic_.resize(n_blocks);
+    block_boundary_.resize(n_blocks);
+    const std::uint8_t implicit = bodies.implicit_fixity();
+    const double* inv_m = inv_mass_.data();
+    const double* inv_i = inv_inertia_.data();
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_blocks; ++b) {
+        const std::size_t i0 = b * kBodyBlock, i1 = std::min(n, i0 + kBodyBlock);
+        std::uint8_t fixed = 0;  // any explicitly fixed DOF in the block
+        for (std::size_t i = i0; i < i1; ++i) fixed |= bodies.fixity[i];
+        fixed &= ~implicit;
+        double kinetic = 0, boundary = 0;
+        if (fixed)
+            kick_block(bodies, inv_m, inv_i, h, i0, i1, closing, kinetic, boundary);
+        else if (dim == 3)
+            closing ? kick_free_block<3, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
+                    : kick_free_block<3, false>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
+        else
+            closing ? kick_free_block<2, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
+                    : kick_free_block<2, false>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
+        if (closing) {
+            block_kinetic_[b] = kinetic;
+            block_boundary_[b] = boundary;
         }
     }
 }
 
+// The closing kick's energy sums without a kick (prepare(): forces at a state).
+void World::body_energies(double dt) {
+    const std::size_t n = bodies.size(), n_blocks = body_blocks();
+    block_kinetic_.assign(n_blocks, 0.0);
+    block_boundary_.assign(n_blocks, 0.0);
+    const std::uint8_t implicit = bodies.implicit_fixity();
+    for (std::size_t b = 0; b < n_blocks; ++b)
+        for (std::size_t i = b * kBodyBlock; i < std::min(n, (b + 1) * kBodyBlock); ++i)
+            add_body_energy(bodies, i, dt, bodies.fixity[i] & ~implicit, block_kinetic_[b], block_boundary_[b]);
+}
+
 // x += (v + correction) dt; the correction (abi.h, PLAB_PHASE_PRE_DRIFT) only
 // where a pass registered its fields, and only along free translational DOFs.
+// While x is at hand: the detector's domain check and the largest
+// displacement since the last build (displacement_exceeds_skin()).
 void World::drift(double dt) {
     const std::size_t n = bodies.size();
-    double body_work = 0;
+    double body_work = 0, max2 = 0;
     const Vec lo = baseline_.lo, hi = baseline_.hi;
     bool out = false;
     const int cx = field_index(PLAB_DRIFT_CORRECTION_X), cy = field_index(PLAB_DRIFT_CORRECTION_Y),
               cz = field_index(PLAB_DRIFT_CORRECTION_Z);
     const bool corrected = cx >= 0 && cy >= 0 && cz >= 0;
+    const bool tracked = position_at_build_.size() == n;
+    const Vec* built = tracked ? position_at_build_.data() : bodies.position.data();
     for (std::size_t i = 0; i < n; ++i) {
         Vec dx = bodies.velocity[i] * dt;
         if (corrected) {
@@ -410,12 +517,14 @@ void World::drift(double dt) {
         Vec& x = bodies.position[i];
         x += dx;
         body_work += bodies.mass[i] * gravity.dot(dx);  // exact for a constant force
-        // the detector's domain check, while x is at hand (a NaN fails every comparison)
+        max2 = std::max(max2, (x - built[i]).squaredNorm());
+        // a NaN fails every comparison
         out |= !(x.x() >= lo.x() && x.x() <= hi.x() && x.y() >= lo.y() && x.y() <= hi.y() && x.z() >= lo.z() &&
                  x.z() <= hi.z() && std::fabs(x.x() + x.y() + x.z()) < kInf);
     }
     energies.body += body_work;
     left_domain_ = out;
+    max_drift2_ = tracked ? max2 : -1;
 }
 
 // For a plug-in author: the model and contact whose output went non-finite.
@@ -458,18 +567,10 @@ void World::check_finite() {
 // Energy flows over the step just taken; states (kinetic, strain) are
 // recomputed at the synchronised velocities.
 void World::sum_energies(double dt) {
-    double kinetic = 0, boundary = 0;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const Vec& v = bodies.velocity[i];
-        const Vec& w = bodies.angular_velocity[i];
-        kinetic += 0.5 * bodies.mass[i] * v.squaredNorm() + 0.5 * bodies.inertia[i] * w.squaredNorm();
-        boundary += bodies.applied_force[i].dot(v) * dt + bodies.applied_moment[i].dot(w) * dt;
-        const std::uint8_t fix = bodies.fixity[i] & ~bodies.implicit_fixity();
-        if (fix)  // reaction at a fixed degree of freedom does the work that keeps its velocity
-            for (int c = 0; c < 3; ++c) {
-                if (fix & (dof_x << c)) boundary -= bodies.force[i][c] * v[c] * dt;
-                if (fix & (dof_rx << c)) boundary -= bodies.moment[i][c] * w[c] * dt;
-            }
+    double kinetic = 0, boundary = 0;  // the bodies' part, per block (kick(), body_energies())
+    for (std::size_t b = 0; b < block_kinetic_.size(); ++b) {
+        kinetic += block_kinetic_[b];
+        boundary += block_boundary_[b];
     }
     // contact energies, summed per batch of rows by scatter_rows()
     double strain = 0;

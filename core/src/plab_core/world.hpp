@@ -359,6 +359,9 @@ private:
     // whether the ball–ball rows of a model go to it packed (force_sweep): no
     // model of the world has a rates stage and this one accumulates no field
     bool packs_balls(const ModelInstance& inst) const;
+    // the largest squared displacement since the last build, taken by
+    // drift() while the positions are at hand (-1: no reference positions)
+    double max_drift2_ = -1;
     bool displacement_exceeds_skin() const;
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
@@ -395,10 +398,25 @@ private:
     void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
                            std::vector<std::array<std::int32_t, 2>>& pairs) const;
     void force_pass();
-    bool finish_body_force(std::size_t body, double& local_work);
+    void damp_body(std::size_t body, Vec& force, Vec& moment, double& local_work) const;
     bool reduce();  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
-    void kick(double half_dt);
+    // The per-body loops work on fixed blocks of bodies; a sum over the
+    // bodies is taken per block and the blocks added in order, so it does
+    // not depend on the thread count.
+    static constexpr std::size_t kBodyBlock = 1024;
+    std::size_t body_blocks() const { return (bodies.size() + kBodyBlock - 1) / kBodyBlock; }
+    // 1/m and 1/I of every body, for the kicks; set by prepare() (a change
+    // of mass or inertia marks the world dirty, as any scene change does)
+    std::vector<double> inv_mass_, inv_inertia_;
+    void cache_inverse_masses();
+    // per block: kinetic energy at the synchronised velocities and the work
+    // of applied loads and fixed-DOF reactions over the last step, from the
+    // closing kick (kick(h, true)) or body_energies()
+    std::vector<double> block_kinetic_, block_boundary_;
+    std::vector<double> block_scratch_;  // per block: work of gravity (drift), of local damping (reduce)
+    void kick(double half_dt, bool closing = false);
+    void body_energies(double dt);
     void drift(double dt);
     void check_finite();
     std::string non_finite_contact(std::size_t body) const;
