@@ -241,7 +241,7 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
 #pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)
     for (std::uint32_t c = c0; c < c1; ++c) {
         const Chunk& ch = chunks_[c];
-        if (ch.hi >= ch.lo) std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * std::size_t(ch.hi - ch.lo + 1), 0.0);
+        std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * ch.slots, 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
             const std::size_t m = std::min(kContactBatch, ch.end - o);
             if (dense && at_centres) {  // SPH: no spin, moments, stiffness or energies
@@ -302,8 +302,9 @@ void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uin
 void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const auto& B = bodies;
-    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
+    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo), or listed
     const std::int32_t lo = ch.lo;
+    const std::uint32_t* listed = ch.listed ? listed_slot_[si].data() : nullptr;
     double strain = 0, slip = 0, dashpot = 0, broken = 0, wall_power = 0;
     // the active rows, listed without a branch per row
     std::uint32_t rows[kContactBatch];
@@ -314,7 +315,7 @@ void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, c
     }
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = rows[a];
-        double* f1m1 = fm + kSlotDoubles * std::size_t(s.end1[k] - lo);
+        double* f1m1 = fm + kSlotDoubles * (listed ? std::size_t(listed[k]) : std::size_t(s.end1[k] - lo));
         strain += s.strain[k];
         slip += s.slip[k];
         dashpot += s.dashpot[k];
@@ -341,7 +342,7 @@ void World::scatter_to_chunks(std::uint32_t si) {
 #pragma omp parallel for schedule(dynamic) if (n >= parallel_min)
     for (std::uint32_t c = set_chunks_[si]; c < set_chunks_[si + 1]; ++c) {
         const Chunk& ch = chunks_[c];
-        if (ch.hi >= ch.lo) std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * std::size_t(ch.hi - ch.lo + 1), 0.0);
+        std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * ch.slots, 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch)
             scatter_rows(si, o, std::min(ch.end, o + kContactBatch), ch);
     }
@@ -434,8 +435,19 @@ bool World::reduce() {
             moment[i] = bodies.applied_moment[i];
         }
         for (const Chunk& ch : chunks_) {
-            const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
             const double* p = partial_fm_.data() + ch.offset;
+            if (ch.listed) {  // its balls in [i0, i1), ascending
+                const std::int32_t* first = chunk_bodies_.data() + ch.first_listed;
+                const std::int32_t* q0 = std::lower_bound(first, first + ch.slots, std::int32_t(i0));
+                const std::int32_t* q1 = std::lower_bound(q0, first + ch.slots, std::int32_t(i1));
+                for (const std::int32_t* q = q0; q < q1; ++q) {
+                    const double* pi = p + kSlotDoubles * std::size_t(q - first);
+                    force[*q] += Vec(pi);
+                    moment[*q] += Vec(pi + 3);
+                }
+                continue;
+            }
+            const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
             for (std::size_t i = c0; i < c1; ++i) {
                 const double* pi = p + kSlotDoubles * (i - std::size_t(ch.lo));
                 force[i] += Vec(pi);

@@ -287,9 +287,7 @@ void World::advance() {
     }
     {
         PhaseTimer t{phase_seconds[ph_motion]};
-        kick(0.5 * dt);
-        run_passes(PLAB_PHASE_PRE_DRIFT);  // e.g. XSPH: a drift velocity correction from v(t + dt/2)
-        drift(dt);
+        kick_and_drift(dt);
         wall_motion_since_build_ += walls.move(dt, dim);
     }
     {
@@ -448,37 +446,71 @@ void World::cache_inverse_masses() {
     }
 }
 
-// Half a kick for every body; the closing kick of a step (`closing`) also
-// takes the per-block energy sums while the velocities are at hand, for
+// Half a kick of block b; the closing kick of a step (`closing`) also
+// takes the block's energy sums while the velocities are at hand, for
 // sum_energies().
+void World::kick_block_of_bodies(std::size_t b, double h, bool closing) {
+    const std::size_t i0 = b * kBodyBlock, i1 = std::min(bodies.size(), i0 + kBodyBlock);
+    const double* inv_m = inv_mass_.data();
+    const double* inv_i = inv_inertia_.data();
+    std::uint8_t fixed = 0;  // any explicitly fixed DOF in the block
+    for (std::size_t i = i0; i < i1; ++i) fixed |= bodies.fixity[i];
+    fixed &= ~bodies.implicit_fixity();
+    double kinetic = 0, boundary = 0;
+    if (fixed)
+        kick_block(bodies, inv_m, inv_i, h, i0, i1, closing, kinetic, boundary);
+    else if (dim == 3)
+        closing ? kick_free_block<3, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
+                : kick_free_block<3, false>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
+    else
+        closing ? kick_free_block<2, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
+                : kick_free_block<2, false>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
+    if (closing) {
+        block_kinetic_[b] = kinetic;
+        block_boundary_[b] = boundary;
+    }
+}
+
+// The first half of a step's law of motion: half a kick, the PRE_DRIFT
+// passes (e.g. XSPH: a drift velocity correction from v(t + dt/2)), the
+// drift. Without such a pass or correction the drift of a block follows its
+// kick in the same loop, while v is in cache.
+void World::kick_and_drift(double dt) {
+    const std::size_t n = bodies.size(), n_blocks = body_blocks();
+    prepare_body_blocks();
+    bool pre_drift = false;
+    for (const auto& p : passes_) pre_drift |= p.desc->phase == PLAB_PHASE_PRE_DRIFT;
+    const DriftCorrection corr = drift_correction();
+    if (pre_drift || corr.on) {
+        kick(0.5 * dt);
+        run_passes(PLAB_PHASE_PRE_DRIFT);
+        drift(dt);
+        return;
+    }
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_blocks; ++b) {
+        kick_block_of_bodies(b, 0.5 * dt, false);
+        drift_block(b, dt, corr);
+    }
+    finish_drift();
+}
+
+// Half a kick for every body (see kick_block_of_bodies()).
 void World::kick(double h, bool closing) {
+    const std::size_t n = bodies.size(), n_blocks = body_blocks();
+    prepare_body_blocks();
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_blocks; ++b) kick_block_of_bodies(b, h, closing);
+}
+
+void World::prepare_body_blocks() {
     const std::size_t n = bodies.size(), n_blocks = body_blocks();
     if (inv_mass_.size() != n) cache_inverse_masses();  // e.g. a world just loaded from a checkpoint
     block_kinetic_.resize(n_blocks);
     block_boundary_.resize(n_blocks);
-    const std::uint8_t implicit = bodies.implicit_fixity();
-    const double* inv_m = inv_mass_.data();
-    const double* inv_i = inv_inertia_.data();
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
-    for (std::size_t b = 0; b < n_blocks; ++b) {
-        const std::size_t i0 = b * kBodyBlock, i1 = std::min(n, i0 + kBodyBlock);
-        std::uint8_t fixed = 0;  // any explicitly fixed DOF in the block
-        for (std::size_t i = i0; i < i1; ++i) fixed |= bodies.fixity[i];
-        fixed &= ~implicit;
-        double kinetic = 0, boundary = 0;
-        if (fixed)
-            kick_block(bodies, inv_m, inv_i, h, i0, i1, closing, kinetic, boundary);
-        else if (dim == 3)
-            closing ? kick_free_block<3, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
-                    : kick_free_block<3, false>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
-        else
-            closing ? kick_free_block<2, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
-                    : kick_free_block<2, false>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
-        if (closing) {
-            block_kinetic_[b] = kinetic;
-            block_boundary_[b] = boundary;
-        }
-    }
+    block_body_work_.resize(n_blocks);
+    block_max_drift2_.resize(n_blocks);
+    block_out_.resize(n_blocks);
 }
 
 // The closing kick's energy sums without a kick (prepare(): forces at a state).
@@ -492,27 +524,42 @@ void World::body_energies(double dt) {
             add_body_energy(bodies, i, dt, bodies.fixity[i] & ~implicit, block_kinetic_[b], block_boundary_[b]);
 }
 
-// x += (v + correction) dt; the correction (abi.h, PLAB_PHASE_PRE_DRIFT) only
-// where a pass registered its fields, and only along free translational DOFs.
-// While x is at hand: the detector's domain check and the largest
-// displacement since the last build (displacement_exceeds_skin()).
-void World::drift(double dt) {
-    const std::size_t n = bodies.size();
-    double body_work = 0, max2 = 0;
-    const Vec lo = baseline_.lo, hi = baseline_.hi;
-    bool out = false;
+World::DriftCorrection World::drift_correction() {
+    DriftCorrection c;
     const int cx = field_index(PLAB_DRIFT_CORRECTION_X), cy = field_index(PLAB_DRIFT_CORRECTION_Y),
               cz = field_index(PLAB_DRIFT_CORRECTION_Z);
-    const bool corrected = cx >= 0 && cy >= 0 && cz >= 0;
-    const bool tracked = position_at_build_.size() == n;
+    c.on = cx >= 0 && cy >= 0 && cz >= 0;
+    if (c.on) c.field = {fields_[cx].data(), fields_[cy].data(), fields_[cz].data()};
+    return c;
+}
+
+// x += (v + correction) dt; the correction (abi.h, PLAB_PHASE_PRE_DRIFT) only
+// where a pass registered its fields, and only along free translational DOFs.
+void World::drift(double dt) {
+    const std::size_t n = bodies.size(), n_blocks = body_blocks();
+    prepare_body_blocks();
+    const DriftCorrection corr = drift_correction();
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_blocks; ++b) drift_block(b, dt, corr);
+    finish_drift();
+}
+
+// The drift of block b. While x is at hand: the work of gravity, the
+// detector's domain check and the largest displacement since the last
+// build (displacement_exceeds_skin()).
+void World::drift_block(std::size_t b, double dt, const DriftCorrection& corr) {
+    const std::size_t i0 = b * kBodyBlock, i1 = std::min(bodies.size(), i0 + kBodyBlock);
+    const Vec lo = baseline_.lo, hi = baseline_.hi;
+    const bool tracked = position_at_build_.size() == bodies.size();
     const Vec* built = tracked ? position_at_build_.data() : bodies.position.data();
-    for (std::size_t i = 0; i < n; ++i) {
+    double body_work = 0, max2 = 0;
+    bool out = false;
+    for (std::size_t i = i0; i < i1; ++i) {
         Vec dx = bodies.velocity[i] * dt;
-        if (corrected) {
+        if (corr.on) {
             const std::uint8_t fix = bodies.fixity[i];
-            const double c[3] = {fields_[cx][i], fields_[cy][i], fields_[cz][i]};
             for (int k = 0; k < 3; ++k)
-                if (!(fix & (dof_x << k))) dx[k] += c[k] * dt;
+                if (!(fix & (dof_x << k))) dx[k] += corr.field[k][i] * dt;
         }
         Vec& x = bodies.position[i];
         x += dx;
@@ -522,9 +569,23 @@ void World::drift(double dt) {
         out |= !(x.x() >= lo.x() && x.x() <= hi.x() && x.y() >= lo.y() && x.y() <= hi.y() && x.z() >= lo.z() &&
                  x.z() <= hi.z() && std::fabs(x.x() + x.y() + x.z()) < kInf);
     }
+    block_body_work_[b] = body_work;
+    block_max_drift2_[b] = tracked ? max2 : -1;
+    block_out_[b] = out;
+}
+
+// The blocks' drift results, in block order.
+void World::finish_drift() {
+    double body_work = 0, max2 = 0;
+    bool out = false;
+    for (std::size_t b = 0; b < body_blocks(); ++b) {
+        body_work += block_body_work_[b];
+        max2 = block_max_drift2_[b] < 0 ? -1 : std::max(max2, block_max_drift2_[b]);
+        out |= block_out_[b] != 0;
+    }
     energies.body += body_work;
     left_domain_ = out;
-    max_drift2_ = tracked ? max2 : -1;
+    max_drift2_ = position_at_build_.size() == bodies.size() ? max2 : -1;
 }
 
 // For a plug-in author: the model and contact whose output went non-finite.

@@ -263,7 +263,16 @@ private:
         std::size_t begin, end;  // rows
         std::int32_t lo, hi;     // bodies touched (hi < lo: none)
         std::size_t offset;      // into partial_fm_
+        // Bodies with a slot in partial_fm_: every body lo..hi, or, for a
+        // `listed` chunk (ball–wall rows touch a few balls spread over all
+        // of them), only the balls it touches: chunk_bodies_[first_listed..]
+        // ascending, row k's ball at slot listed_slot_[set][k].
+        std::size_t slots = 0;
+        bool listed = false;
+        std::size_t first_listed = 0;
     };
+    std::vector<std::int32_t> chunk_bodies_;
+    std::vector<std::vector<std::uint32_t>> listed_slot_;
     std::vector<Chunk> chunks_;
     std::vector<std::uint32_t> set_chunks_;  // chunks of set si: [set_chunks_[si], set_chunks_[si + 1])
     std::vector<double> partial_fm_;
@@ -278,6 +287,7 @@ private:
     // last list): only such rows need their history reset when out of range
     std::vector<std::vector<std::uint8_t>> live_;
     void build_chunks();
+    void list_chunk_bodies(Chunk& ch);
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
     bool in_range_marked_ = false;   // mark_ball_rows_in_range() ran at the current positions
@@ -414,10 +424,25 @@ private:
     // of applied loads and fixed-DOF reactions over the last step, from the
     // closing kick (kick(h, true)) or body_energies()
     std::vector<double> block_kinetic_, block_boundary_;
-    std::vector<double> block_scratch_;  // per block: work of gravity (drift), of local damping (reduce)
+    std::vector<double> block_scratch_;  // per block: work of local damping (reduce)
+    // per block, from the drift: work of gravity, largest squared
+    // displacement since the build (-1: no reference), a position out of
+    // the domain or not finite
+    std::vector<double> block_body_work_, block_max_drift2_;
+    std::vector<std::uint8_t> block_out_;
+    struct DriftCorrection {
+        bool on = false;
+        std::array<const double*, 3> field{};
+    };
+    DriftCorrection drift_correction();
+    void prepare_body_blocks();
+    void kick_block_of_bodies(std::size_t block, double half_dt, bool closing);
     void kick(double half_dt, bool closing = false);
+    void kick_and_drift(double dt);
     void body_energies(double dt);
     void drift(double dt);
+    void drift_block(std::size_t block, double dt, const DriftCorrection& corr);
+    void finish_drift();
     void check_finite();
     std::string non_finite_contact(std::size_t body) const;
     void sum_energies(double dt);
