@@ -382,10 +382,8 @@ namespace {
 // bookkeeping): kinetic energy, and the work over the step dt of its applied
 // loads and, along explicitly fixed DOFs, of the reaction that keeps the
 // velocity.
-inline void add_body_energy(const Bodies& B, std::size_t i, double dt, std::uint8_t explicit_fix, double& kinetic,
-                            double& boundary) {
-    const Vec& v = B.velocity[i];
-    const Vec& w = B.angular_velocity[i];
+inline void add_body_energy(const Bodies& B, std::size_t i, const Vec& v, const Vec& w, double dt,
+                            std::uint8_t explicit_fix, double& kinetic, double& boundary) {
     kinetic += 0.5 * B.mass[i] * v.squaredNorm() + 0.5 * B.inertia[i] * w.squaredNorm();
     boundary += B.applied_force[i].dot(v) * dt + B.applied_moment[i].dot(w) * dt;
     if (explicit_fix)
@@ -402,8 +400,9 @@ template <int Dim, bool Energies>
 void kick_free_block(Bodies& B, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
                      double& kinetic, double& boundary) {
     for (std::size_t i = i0; i < i1; ++i) {
-        Vec& v = B.velocity[i];
-        Vec& w = B.angular_velocity[i];
+        // on copies, stored whole: the energy sums read them back from
+        // registers, not through a store of parts and a wider load
+        Vec v = B.velocity[i], w = B.angular_velocity[i];
         const Vec& f = B.force[i];
         const Vec& m = B.moment[i];
         if (Dim == 3) {
@@ -416,7 +415,9 @@ void kick_free_block(Bodies& B, const double* inv_m, const double* inv_i, double
             v[1] += h * f[1] * inv_m[i];
             w[2] += h * m[2] * inv_i[i];
         }
-        if (Energies) add_body_energy(B, i, 2 * h, 0, kinetic, boundary);
+        B.velocity[i] = v;
+        B.angular_velocity[i] = w;
+        if (Energies) add_body_energy(B, i, v, w, 2 * h, 0, kinetic, boundary);
     }
 }
 
@@ -430,7 +431,7 @@ void kick_block(Bodies& B, const double* inv_m, const double* inv_i, double h, s
             if (!(fix & (dof_x << c))) B.velocity[i][c] += h * B.force[i][c] * inv_m[i];
             if (!(fix & (dof_rx << c))) B.angular_velocity[i][c] += h * B.moment[i][c] * inv_i[i];
         }
-        if (energies) add_body_energy(B, i, 2 * h, fix & ~implicit, kinetic, boundary);
+        if (energies) add_body_energy(B, i, B.velocity[i], B.angular_velocity[i], 2 * h, fix & ~implicit, kinetic, boundary);
     }
 }
 
@@ -521,7 +522,8 @@ void World::body_energies(double dt) {
     const std::uint8_t implicit = bodies.implicit_fixity();
     for (std::size_t b = 0; b < n_blocks; ++b)
         for (std::size_t i = b * kBodyBlock; i < std::min(n, (b + 1) * kBodyBlock); ++i)
-            add_body_energy(bodies, i, dt, bodies.fixity[i] & ~implicit, block_kinetic_[b], block_boundary_[b]);
+            add_body_energy(bodies, i, bodies.velocity[i], bodies.angular_velocity[i], dt, bodies.fixity[i] & ~implicit,
+                            block_kinetic_[b], block_boundary_[b]);
 }
 
 World::DriftCorrection World::drift_correction() {
@@ -549,7 +551,7 @@ void World::drift(double dt) {
 // build (displacement_exceeds_skin()).
 void World::drift_block(std::size_t b, double dt, const DriftCorrection& corr) {
     const std::size_t i0 = b * kBodyBlock, i1 = std::min(bodies.size(), i0 + kBodyBlock);
-    const Vec lo = baseline_.lo, hi = baseline_.hi;
+    const Vec lo = baseline_.lo, hi = baseline_.hi, g = gravity;  // copies: no reload after each store
     const bool tracked = position_at_build_.size() == bodies.size();
     const Vec* built = tracked ? position_at_build_.data() : bodies.position.data();
     double body_work = 0, max2 = 0;
@@ -563,11 +565,11 @@ void World::drift_block(std::size_t b, double dt, const DriftCorrection& corr) {
         }
         Vec& x = bodies.position[i];
         x += dx;
-        body_work += bodies.mass[i] * gravity.dot(dx);  // exact for a constant force
+        body_work += bodies.mass[i] * g.dot(dx);  // exact for a constant force
         max2 = std::max(max2, (x - built[i]).squaredNorm());
-        // a NaN fails every comparison
-        out |= !(x.x() >= lo.x() && x.x() <= hi.x() && x.y() >= lo.y() && x.y() <= hi.y() && x.z() >= lo.z() &&
-                 x.z() <= hi.z() && std::fabs(x.x() + x.y() + x.z()) < kInf);
+        // a NaN fails every comparison (& rather than &&: no branch per comparison)
+        out |= !((x.x() >= lo.x()) & (x.x() <= hi.x()) & (x.y() >= lo.y()) & (x.y() <= hi.y()) & (x.z() >= lo.z()) &
+                 (x.z() <= hi.z()) & (std::fabs(x.x() + x.y() + x.z()) < kInf));
     }
     block_body_work_[b] = body_work;
     block_max_drift2_[b] = tracked ? max2 : -1;
