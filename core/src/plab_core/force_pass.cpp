@@ -407,12 +407,64 @@ void World::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
     }
 }
 
-// Sum contact forces and moments onto bodies (plus gravity and applied
-// loads), each body adding the chunks' partial sums in chunk order; then
-// field accumulations, damping and the 2D projection. True when a body's
+// Bodies [i0, i1): gravity and applied loads, then the chunks' partial
+// sums in chunk order (the same order for any thread count).
+void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
+    Vec* force = bodies.force.data();
+    Vec* moment = bodies.moment.data();
+    for (std::size_t i = i0; i < i1; ++i) {
+        force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
+        moment[i] = bodies.applied_moment[i];
+    }
+    for (const Chunk& ch : chunks_) {
+        const double* p = partial_fm_.data() + ch.offset;
+        if (ch.listed) {  // its balls in [i0, i1), ascending
+            const std::int32_t* first = chunk_bodies_.data() + ch.first_listed;
+            const std::int32_t* q0 = std::lower_bound(first, first + ch.slots, std::int32_t(i0));
+            const std::int32_t* q1 = std::lower_bound(q0, first + ch.slots, std::int32_t(i1));
+            for (const std::int32_t* q = q0; q < q1; ++q) {
+                const double* pi = p + kSlotDoubles * std::size_t(q - first);
+                force[*q] += Vec(pi);
+                moment[*q] += Vec(pi + 3);
+            }
+            continue;
+        }
+        const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
+        for (std::size_t i = c0; i < c1; ++i) {
+            const double* pi = p + kSlotDoubles * (i - std::size_t(ch.lo));
+            force[i] += Vec(pi);
+            moment[i] += Vec(pi + 3);
+        }
+    }
+}
+
+// Bodies [i0, i1) after their contact sums: field accumulations, damping
+// (its work added to local_work), the 2D projection. False when a body's
 // state may be non-finite.
-bool World::reduce() {
+bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
     constexpr std::uint32_t end2_bit = 1u << 31;
+    Vec* force = bodies.force.data();
+    Vec* moment = bodies.moment.data();
+    double finite = 0;  // stays 0 unless some value is Inf or NaN (x * 0 is NaN then)
+    for (std::size_t i = i0; i < i1; ++i) {
+        if (any_accumulation_)  // fields of rates-stage models are summed after that stage
+            for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
+                const Entry en = entries_[e];
+                const ContactSet& s = *sets_[en.set];
+                const std::uint32_t k = en.row & ~end2_bit;
+                const ModelInstance& owner = *set_owner_[en.set];
+                if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
+            }
+        if (bodies.local_damping[i] > 0 || bodies.viscous_damping[i] > 0) damp_body(i, force[i], moment[i], local_work);
+        if (dim == 2) { force[i].z() = 0; moment[i].x() = 0; moment[i].y() = 0; }
+        finite += (force[i].sum() + moment[i].sum() + bodies.position[i].sum() + bodies.velocity[i].sum()) * 0.0;
+    }
+    return finite == 0;  // check_finite() finds which body
+}
+
+// Sum contact forces and moments onto bodies, then finish each body, in
+// blocks of bodies. True when a body's state may be non-finite.
+bool World::reduce() {
     const std::size_t n = bodies.size();
     for (auto& inst : instances_)
         if (!inst->desc->rates_stage)
@@ -420,60 +472,18 @@ bool World::reduce() {
     if (!swept_)  // force_sweep() summed the rows already
         for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_chunks(si);
     bool non_finite = false;
-    // blocks of bodies: the contact sums are added chunk by chunk (in chunk
-    // order, the same for any thread count) over the block, then each body
-    // of the block gets its damping and checks
     const std::size_t n_blocks = body_blocks();
-    block_scratch_.assign(n_blocks, 0.0);  // local damping work per block
-    Vec* force = bodies.force.data();
-    Vec* moment = bodies.moment.data();
+    block_local_work_.assign(n_blocks, 0.0);  // local damping work per block
 #pragma omp parallel for schedule(static) reduction(| : non_finite) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_blocks; ++b) {
         const std::size_t i0 = b * kBodyBlock, i1 = std::min(n, i0 + kBodyBlock);
-        for (std::size_t i = i0; i < i1; ++i) {
-            force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
-            moment[i] = bodies.applied_moment[i];
-        }
-        for (const Chunk& ch : chunks_) {
-            const double* p = partial_fm_.data() + ch.offset;
-            if (ch.listed) {  // its balls in [i0, i1), ascending
-                const std::int32_t* first = chunk_bodies_.data() + ch.first_listed;
-                const std::int32_t* q0 = std::lower_bound(first, first + ch.slots, std::int32_t(i0));
-                const std::int32_t* q1 = std::lower_bound(q0, first + ch.slots, std::int32_t(i1));
-                for (const std::int32_t* q = q0; q < q1; ++q) {
-                    const double* pi = p + kSlotDoubles * std::size_t(q - first);
-                    force[*q] += Vec(pi);
-                    moment[*q] += Vec(pi + 3);
-                }
-                continue;
-            }
-            const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
-            for (std::size_t i = c0; i < c1; ++i) {
-                const double* pi = p + kSlotDoubles * (i - std::size_t(ch.lo));
-                force[i] += Vec(pi);
-                moment[i] += Vec(pi + 3);
-            }
-        }
-        double local_work = 0, finite = 0;  // finite stays 0 unless some value is Inf or NaN
-        for (std::size_t i = i0; i < i1; ++i) {
-            if (any_accumulation_)  // fields of rates-stage models are summed after that stage
-                for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-                    const Entry en = entries_[e];
-                    const ContactSet& s = *sets_[en.set];
-                    const std::uint32_t k = en.row & ~end2_bit;
-                    const ModelInstance& owner = *set_owner_[en.set];
-                    if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
-                }
-            if (bodies.local_damping[i] > 0 || bodies.viscous_damping[i] > 0) damp_body(i, force[i], moment[i], local_work);
-            if (dim == 2) { force[i].z() = 0; moment[i].x() = 0; moment[i].y() = 0; }
-            // x * 0 is 0 for a finite x and NaN otherwise; check_finite() finds which
-            finite += (force[i].sum() + moment[i].sum() + bodies.position[i].sum() + bodies.velocity[i].sum()) * 0.0;
-        }
-        block_scratch_[b] = local_work;
-        non_finite |= !(finite == 0);
+        add_chunk_sums(i0, i1);
+        double work = 0;
+        non_finite |= !finish_bodies(i0, i1, work);
+        block_local_work_[b] = work;
     }
     double local_work = 0;
-    for (double w : block_scratch_) local_work += w;
+    for (double w : block_local_work_) local_work += w;
     energies.local_damping += local_work;
     stiffness_valid_ = false;
 

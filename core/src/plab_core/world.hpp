@@ -409,6 +409,8 @@ private:
                            std::vector<std::array<std::int32_t, 2>>& pairs) const;
     void force_pass();
     void damp_body(std::size_t body, Vec& force, Vec& moment, double& local_work) const;
+    void add_chunk_sums(std::size_t first_body, std::size_t end_body);
+    bool finish_bodies(std::size_t first_body, std::size_t end_body, double& local_work);
     bool reduce();  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
     // The per-body loops work on fixed blocks of bodies; a sum over the
@@ -424,7 +426,7 @@ private:
     // of applied loads and fixed-DOF reactions over the last step, from the
     // closing kick (kick(h, true)) or body_energies()
     std::vector<double> block_kinetic_, block_boundary_;
-    std::vector<double> block_scratch_;  // per block: work of local damping (reduce)
+    std::vector<double> block_local_work_;  // per block: work of local and viscous damping (reduce)
     // per block, from the drift: work of gravity, largest squared
     // displacement since the build (-1: no reference), a position out of
     // the domain or not finite
