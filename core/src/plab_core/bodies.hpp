@@ -28,6 +28,8 @@ struct Bodies {
     std::vector<Vec> position, velocity, angular_velocity;
     std::vector<Vec> force, moment;                  // total, after the force pass
     std::vector<Vec> applied_force, applied_moment;  // user loads
+    // a change of mass or inertia after World::prepare() needs
+    // World::mark_dirty(): the kicks use 1/m and 1/I cached there
     std::vector<double> radius, mass, inertia, local_damping;
     std::vector<double> viscous_damping;  // 1/s: F = -c m v, M = -c I w (mass-proportional)
     std::vector<int> group;

@@ -72,12 +72,11 @@ double cutoff(const ModelInstance& inst, double r1, double r2, double skin) {
 
 } // namespace
 
+// From the largest displacement drift() found (none known: rebuild).
 bool World::displacement_exceeds_skin() const {
+    if (max_drift2_ < 0) return true;
     const double s = effective_skin();
-    double max2 = 0;
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-        max2 = std::max(max2, (bodies.position[i] - position_at_build_[i]).squaredNorm());
-    const double max_disp = std::sqrt(max2);
+    const double max_disp = std::sqrt(max_drift2_);
     // two bodies closing on each other, or a body and a moving wall
     return 2.0 * max_disp > s || max_disp + wall_motion_since_build_ > s;
 }
@@ -337,12 +336,33 @@ void World::build_entries() {
     for (auto& inst : instances_) any_accumulation_ |= !inst->desc->rates_stage && !inst->fields_accumulated.empty();
 }
 
+// A ball–wall chunk's partial sums over only the balls it touches (a few
+// thousand rows touch balls spread over all of them): its slots are its
+// balls in ascending order. The sums per body are the same as over lo..hi.
+void World::list_chunk_bodies(Chunk& ch) {
+    const ContactSet& s = *sets_[ch.set];
+    const auto first = std::ptrdiff_t(chunk_bodies_.size());
+    for (std::size_t k = ch.begin; k < ch.end; ++k) chunk_bodies_.push_back(s.end1[k]);
+    std::sort(chunk_bodies_.begin() + first, chunk_bodies_.end());
+    chunk_bodies_.erase(std::unique(chunk_bodies_.begin() + first, chunk_bodies_.end()), chunk_bodies_.end());
+    std::vector<std::uint32_t>& slot = listed_slot_[ch.set];
+    slot.resize(s.size());
+    for (std::size_t k = ch.begin; k < ch.end; ++k)
+        slot[k] = std::uint32_t(std::lower_bound(chunk_bodies_.begin() + first, chunk_bodies_.end(), s.end1[k]) -
+                                (chunk_bodies_.begin() + first));
+    ch.listed = true;
+    ch.first_listed = std::size_t(first);
+    ch.slots = chunk_bodies_.size() - std::size_t(first);
+}
+
 // Chunks of the deterministic reduction (world.hpp): about eight batches
 // each, so that two threads share a set evenly, at most 64 per set.
 void World::build_chunks() {
     constexpr std::size_t batches_per_chunk = 8, max_chunks = 64;
     chunks_.clear();
     set_chunks_.assign(1, 0);
+    chunk_bodies_.clear();
+    listed_slot_.assign(sets_.size(), {});
     std::size_t offset = 0;
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         const ContactSet& s = *sets_[si];
@@ -358,7 +378,9 @@ void World::build_chunks() {
                 ch.lo = std::min(ch.lo, s.end2[k]);
                 ch.hi = std::max(ch.hi, s.end2[k]);
             }
-            if (ch.hi >= ch.lo) offset += kSlotDoubles * std::size_t(ch.hi - ch.lo + 1);
+            ch.slots = ch.hi >= ch.lo ? std::size_t(ch.hi - ch.lo + 1) : 0;
+            if (s.with_wall && ch.slots > 0) list_chunk_bodies(ch);
+            offset += kSlotDoubles * ch.slots;
             chunks_.push_back(ch);
         }
         set_chunks_.push_back(std::uint32_t(chunks_.size()));

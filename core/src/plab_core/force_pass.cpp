@@ -241,7 +241,7 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
 #pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)
     for (std::uint32_t c = c0; c < c1; ++c) {
         const Chunk& ch = chunks_[c];
-        if (ch.hi >= ch.lo) std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * std::size_t(ch.hi - ch.lo + 1), 0.0);
+        std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * ch.slots, 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
             const std::size_t m = std::min(kContactBatch, ch.end - o);
             if (dense && at_centres) {  // SPH: no spin, moments, stiffness or energies
@@ -302,8 +302,9 @@ void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uin
 void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const auto& B = bodies;
-    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
+    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo), or listed
     const std::int32_t lo = ch.lo;
+    const std::uint32_t* listed = ch.listed ? listed_slot_[si].data() : nullptr;
     double strain = 0, slip = 0, dashpot = 0, broken = 0, wall_power = 0;
     // the active rows, listed without a branch per row
     std::uint32_t rows[kContactBatch];
@@ -314,7 +315,7 @@ void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, c
     }
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = rows[a];
-        double* f1m1 = fm + kSlotDoubles * std::size_t(s.end1[k] - lo);
+        double* f1m1 = fm + kSlotDoubles * (listed ? std::size_t(listed[k]) : std::size_t(s.end1[k] - lo));
         strain += s.strain[k];
         slip += s.slip[k];
         dashpot += s.dashpot[k];
@@ -341,7 +342,7 @@ void World::scatter_to_chunks(std::uint32_t si) {
 #pragma omp parallel for schedule(dynamic) if (n >= parallel_min)
     for (std::uint32_t c = set_chunks_[si]; c < set_chunks_[si + 1]; ++c) {
         const Chunk& ch = chunks_[c];
-        if (ch.hi >= ch.lo) std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * std::size_t(ch.hi - ch.lo + 1), 0.0);
+        std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * ch.slots, 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch)
             scatter_rows(si, o, std::min(ch.end, o + kContactBatch), ch);
     }
@@ -382,20 +383,9 @@ void World::sum_stiffness() const {
     stiffness_valid_ = true;
 }
 
-// Body i's force and moment after the contact sums: field accumulations,
-// local and viscous damping (their work added to local_work), the 2D
-// projection; true when its state may be non-finite.
-bool World::finish_body_force(std::size_t i, double& local_work) {
-    constexpr std::uint32_t end2_bit = 1u << 31;
-    Vec f = bodies.force[i], m = bodies.moment[i];
-    if (any_accumulation_)  // fields of rates-stage models are summed after that stage
-        for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-            const Entry en = entries_[e];
-            const ContactSet& s = *sets_[en.set];
-            const std::uint32_t k = en.row & ~end2_bit;
-            const ModelInstance& owner = *set_owner_[en.set];
-            if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
-        }
+// PFC local damping and mass-proportional viscous damping of body i's force
+// and moment (their work added to local_work).
+void World::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
     const double alpha = bodies.local_damping[i];
     if (alpha > 0) {  // PFC local damping: -alpha |F| sign(v), per component
         for (int c = 0; c < 3; ++c) {
@@ -415,15 +405,65 @@ bool World::finish_body_force(std::size_t i, double& local_work) {
         m += md;
         local_work -= (fd.dot(bodies.velocity[i]) + md.dot(bodies.angular_velocity[i])) * last_dt;
     }
-    if (dim == 2) { f.z() = 0; m.x() = 0; m.y() = 0; }
-    bodies.force[i] = f;
-    bodies.moment[i] = m;
-    // NaN or Inf anywhere makes the sum non-finite; check_finite() finds which
-    return !std::isfinite(f.sum() + m.sum() + bodies.position[i].sum() + bodies.velocity[i].sum());
 }
 
-// Sum contact forces and moments onto bodies (plus gravity, applied loads and
-// local damping), each body adding the chunks' partial sums in chunk order.
+// Bodies [i0, i1): gravity and applied loads, then the chunks' partial
+// sums in chunk order (the same order for any thread count).
+void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
+    Vec* force = bodies.force.data();
+    Vec* moment = bodies.moment.data();
+    for (std::size_t i = i0; i < i1; ++i) {
+        force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
+        moment[i] = bodies.applied_moment[i];
+    }
+    for (const Chunk& ch : chunks_) {
+        const double* p = partial_fm_.data() + ch.offset;
+        if (ch.listed) {  // its balls in [i0, i1), ascending
+            const std::int32_t* first = chunk_bodies_.data() + ch.first_listed;
+            const std::int32_t* q0 = std::lower_bound(first, first + ch.slots, std::int32_t(i0));
+            const std::int32_t* q1 = std::lower_bound(q0, first + ch.slots, std::int32_t(i1));
+            for (const std::int32_t* q = q0; q < q1; ++q) {
+                const double* pi = p + kSlotDoubles * std::size_t(q - first);
+                force[*q] += Vec(pi);
+                moment[*q] += Vec(pi + 3);
+            }
+            continue;
+        }
+        const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
+        for (std::size_t i = c0; i < c1; ++i) {
+            const double* pi = p + kSlotDoubles * (i - std::size_t(ch.lo));
+            force[i] += Vec(pi);
+            moment[i] += Vec(pi + 3);
+        }
+    }
+}
+
+// Bodies [i0, i1) after their contact sums: field accumulations, damping
+// (its work added to local_work), the 2D projection. False when a body's
+// state may be non-finite.
+bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
+    constexpr std::uint32_t end2_bit = 1u << 31;
+    Vec* force = bodies.force.data();
+    Vec* moment = bodies.moment.data();
+    double finite = 0;  // stays 0 unless some value is Inf or NaN (x * 0 is NaN then)
+    for (std::size_t i = i0; i < i1; ++i) {
+        if (any_accumulation_)  // fields of rates-stage models are summed after that stage
+            for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
+                const Entry en = entries_[e];
+                const ContactSet& s = *sets_[en.set];
+                const std::uint32_t k = en.row & ~end2_bit;
+                const ModelInstance& owner = *set_owner_[en.set];
+                if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
+            }
+        if (bodies.local_damping[i] > 0 || bodies.viscous_damping[i] > 0) damp_body(i, force[i], moment[i], local_work);
+        if (dim == 2) { force[i].z() = 0; moment[i].x() = 0; moment[i].y() = 0; }
+        finite += (force[i].sum() + moment[i].sum() + bodies.position[i].sum() + bodies.velocity[i].sum()) * 0.0;
+    }
+    return finite == 0;  // check_finite() finds which body
+}
+
+// Sum contact forces and moments onto bodies, then finish each body, in
+// blocks of bodies. True when a body's state may be non-finite.
 bool World::reduce() {
     const std::size_t n = bodies.size();
     for (auto& inst : instances_)
@@ -431,32 +471,19 @@ bool World::reduce() {
             for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
     if (!swept_)  // force_sweep() summed the rows already
         for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_chunks(si);
-    double local_work = 0;
     bool non_finite = false;
-    // blocks of bodies: the contact sums are added chunk by chunk (in chunk
-    // order, the same for any thread count) over the block, then each body
-    // of the block gets its damping and checks
-    constexpr std::size_t block = 1024;
-    const std::size_t n_blocks = (n + block - 1) / block;
-#pragma omp parallel for schedule(static) reduction(+ : local_work) reduction(| : non_finite) if (n >= parallel_min)
+    const std::size_t n_blocks = body_blocks();
+    block_local_work_.assign(n_blocks, 0.0);  // local damping work per block
+#pragma omp parallel for schedule(static) reduction(| : non_finite) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_blocks; ++b) {
-        const std::size_t i0 = b * block, i1 = std::min(n, i0 + block);
-        for (std::size_t i = i0; i < i1; ++i) {
-            bodies.force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
-            bodies.moment[i] = bodies.applied_moment[i];
-        }
-        for (const Chunk& ch : chunks_) {
-            const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
-            const double* p = partial_fm_.data() + ch.offset;
-            for (std::size_t i = c0; i < c1; ++i) {
-                const double* pi = p + kSlotDoubles * (i - std::size_t(ch.lo));
-                bodies.force[i] += Vec(pi);
-                bodies.moment[i] += Vec(pi + 3);
-            }
-        }
-        for (std::size_t i = i0; i < i1; ++i)
-            non_finite |= finish_body_force(i, local_work);
+        const std::size_t i0 = b * kBodyBlock, i1 = std::min(n, i0 + kBodyBlock);
+        add_chunk_sums(i0, i1);
+        double work = 0;
+        non_finite |= !finish_bodies(i0, i1, work);
+        block_local_work_[b] = work;
     }
+    double local_work = 0;
+    for (double w : block_local_work_) local_work += w;
     energies.local_damping += local_work;
     stiffness_valid_ = false;
 

@@ -196,6 +196,8 @@ void World::prepare() {
     const double dt = last_dt;
     last_dt = 0;
     force_pass();
+    cache_inverse_masses();
+    body_energies(0.0);
     sum_energies(0.0);  // states (kinetic, strain) at this instant; no flow
     last_dt = dt;
     prepared_ = true;
@@ -285,9 +287,7 @@ void World::advance() {
     }
     {
         PhaseTimer t{phase_seconds[ph_motion]};
-        kick(0.5 * dt);
-        run_passes(PLAB_PHASE_PRE_DRIFT);  // e.g. XSPH: a drift velocity correction from v(t + dt/2)
-        drift(dt);
+        kick_and_drift(dt);
         wall_motion_since_build_ += walls.move(dt, dim);
     }
     {
@@ -299,7 +299,7 @@ void World::advance() {
     force_pass();
     {
         PhaseTimer t{phase_seconds[ph_motion]};
-        kick(0.5 * dt);
+        kick(0.5 * dt, true);
         sum_energies(dt);
     }
     {
@@ -376,46 +376,218 @@ void World::force_pass() {
     }
 }
 
-void World::kick(double h) {
-    const std::size_t n = bodies.size();
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint8_t fix = bodies.fixity[i];
-        const double inv_m = 1.0 / bodies.mass[i], inv_i = 1.0 / bodies.inertia[i];
+namespace {
+
+// What body i adds to the energy sums at its synchronised velocities (PFC's
+// bookkeeping): kinetic energy, and the work over the step dt of its applied
+// loads and, along explicitly fixed DOFs, of the reaction that keeps the
+// velocity.
+inline void add_body_energy(const Bodies& B, std::size_t i, const Vec& v, const Vec& w, double dt,
+                            std::uint8_t explicit_fix, double& kinetic, double& boundary) {
+    kinetic += 0.5 * B.mass[i] * v.squaredNorm() + 0.5 * B.inertia[i] * w.squaredNorm();
+    boundary += B.applied_force[i].dot(v) * dt + B.applied_moment[i].dot(w) * dt;
+    if (explicit_fix)
         for (int c = 0; c < 3; ++c) {
-            if (!(fix & (dof_x << c))) bodies.velocity[i][c] += h * bodies.force[i][c] * inv_m;
-            if (!(fix & (dof_rx << c))) bodies.angular_velocity[i][c] += h * bodies.moment[i][c] * inv_i;
+            if (explicit_fix & (dof_x << c)) boundary -= B.force[i][c] * v[c] * dt;
+            if (explicit_fix & (dof_rx << c)) boundary -= B.moment[i][c] * w[c] * dt;
         }
+}
+
+// Half a kick (thesis eq. 33: v += h F/m, w += h M/I) of bodies [i0, i1)
+// with every DOF of their dimension free (2D: x, y and the spin about z),
+// without a branch per component; with Energies, their energy sums too.
+template <int Dim, bool Energies>
+void kick_free_block(Bodies& B, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
+                     double& kinetic, double& boundary) {
+    for (std::size_t i = i0; i < i1; ++i) {
+        // on copies, stored whole: the energy sums read them back from
+        // registers, not through a store of parts and a wider load
+        Vec v = B.velocity[i], w = B.angular_velocity[i];
+        const Vec& f = B.force[i];
+        const Vec& m = B.moment[i];
+        if (Dim == 3) {
+            for (int c = 0; c < 3; ++c) {
+                v[c] += h * f[c] * inv_m[i];
+                w[c] += h * m[c] * inv_i[i];
+            }
+        } else {
+            v[0] += h * f[0] * inv_m[i];
+            v[1] += h * f[1] * inv_m[i];
+            w[2] += h * m[2] * inv_i[i];
+        }
+        B.velocity[i] = v;
+        B.angular_velocity[i] = w;
+        if (Energies) add_body_energy(B, i, v, w, 2 * h, 0, kinetic, boundary);
     }
+}
+
+// The same for bodies that may have fixed DOFs: a fixed component keeps its velocity.
+void kick_block(Bodies& B, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
+                bool energies, double& kinetic, double& boundary) {
+    const std::uint8_t implicit = B.implicit_fixity();
+    for (std::size_t i = i0; i < i1; ++i) {
+        const std::uint8_t fix = B.fixity[i];
+        for (int c = 0; c < 3; ++c) {
+            if (!(fix & (dof_x << c))) B.velocity[i][c] += h * B.force[i][c] * inv_m[i];
+            if (!(fix & (dof_rx << c))) B.angular_velocity[i][c] += h * B.moment[i][c] * inv_i[i];
+        }
+        if (energies) add_body_energy(B, i, B.velocity[i], B.angular_velocity[i], 2 * h, fix & ~implicit, kinetic, boundary);
+    }
+}
+
+} // namespace
+
+void World::cache_inverse_masses() {
+    const std::size_t n = bodies.size();
+    inv_mass_.resize(n);
+    inv_inertia_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        inv_mass_[i] = 1.0 / bodies.mass[i];
+        inv_inertia_[i] = 1.0 / bodies.inertia[i];
+    }
+}
+
+// Half a kick of block b; the closing kick of a step (`closing`) also
+// takes the block's energy sums while the velocities are at hand, for
+// sum_energies().
+void World::kick_block_of_bodies(std::size_t b, double h, bool closing) {
+    const std::size_t i0 = b * kBodyBlock, i1 = std::min(bodies.size(), i0 + kBodyBlock);
+    const double* inv_m = inv_mass_.data();
+    const double* inv_i = inv_inertia_.data();
+    std::uint8_t fixed = 0;  // any explicitly fixed DOF in the block
+    for (std::size_t i = i0; i < i1; ++i) fixed |= bodies.fixity[i];
+    fixed &= ~bodies.implicit_fixity();
+    double kinetic = 0, boundary = 0;
+    if (fixed)
+        kick_block(bodies, inv_m, inv_i, h, i0, i1, closing, kinetic, boundary);
+    else if (dim == 3)
+        closing ? kick_free_block<3, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
+                : kick_free_block<3, false>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
+    else
+        closing ? kick_free_block<2, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
+                : kick_free_block<2, false>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
+    if (closing) {
+        block_kinetic_[b] = kinetic;
+        block_boundary_[b] = boundary;
+    }
+}
+
+// The first half of a step's law of motion: half a kick, the PRE_DRIFT
+// passes (e.g. XSPH: a drift velocity correction from v(t + dt/2)), the
+// drift. Without such a pass or correction the drift of a block follows its
+// kick in the same loop, while v is in cache.
+void World::kick_and_drift(double dt) {
+    const std::size_t n = bodies.size(), n_blocks = body_blocks();
+    prepare_body_blocks();
+    bool pre_drift = false;
+    for (const auto& p : passes_) pre_drift |= p.desc->phase == PLAB_PHASE_PRE_DRIFT;
+    const DriftCorrection corr = drift_correction();
+    if (pre_drift || corr.on) {
+        kick(0.5 * dt);
+        run_passes(PLAB_PHASE_PRE_DRIFT);
+        drift(dt);
+        return;
+    }
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_blocks; ++b) {
+        kick_block_of_bodies(b, 0.5 * dt, false);
+        drift_block(b, dt, corr);
+    }
+    finish_drift();
+}
+
+// Half a kick for every body (see kick_block_of_bodies()).
+void World::kick(double h, bool closing) {
+    const std::size_t n = bodies.size(), n_blocks = body_blocks();
+    prepare_body_blocks();
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_blocks; ++b) kick_block_of_bodies(b, h, closing);
+}
+
+void World::prepare_body_blocks() {
+    const std::size_t n = bodies.size(), n_blocks = body_blocks();
+    if (inv_mass_.size() != n) cache_inverse_masses();  // e.g. a world just loaded from a checkpoint
+    block_kinetic_.resize(n_blocks);
+    block_boundary_.resize(n_blocks);
+    block_body_work_.resize(n_blocks);
+    block_max_drift2_.resize(n_blocks);
+    block_out_.resize(n_blocks);
+}
+
+// The closing kick's energy sums without a kick (prepare(): forces at a state).
+void World::body_energies(double dt) {
+    const std::size_t n = bodies.size(), n_blocks = body_blocks();
+    block_kinetic_.assign(n_blocks, 0.0);
+    block_boundary_.assign(n_blocks, 0.0);
+    const std::uint8_t implicit = bodies.implicit_fixity();
+    for (std::size_t b = 0; b < n_blocks; ++b)
+        for (std::size_t i = b * kBodyBlock; i < std::min(n, (b + 1) * kBodyBlock); ++i)
+            add_body_energy(bodies, i, bodies.velocity[i], bodies.angular_velocity[i], dt, bodies.fixity[i] & ~implicit,
+                            block_kinetic_[b], block_boundary_[b]);
+}
+
+World::DriftCorrection World::drift_correction() {
+    DriftCorrection c;
+    const int cx = field_index(PLAB_DRIFT_CORRECTION_X), cy = field_index(PLAB_DRIFT_CORRECTION_Y),
+              cz = field_index(PLAB_DRIFT_CORRECTION_Z);
+    c.on = cx >= 0 && cy >= 0 && cz >= 0;
+    if (c.on) c.field = {fields_[cx].data(), fields_[cy].data(), fields_[cz].data()};
+    return c;
 }
 
 // x += (v + correction) dt; the correction (abi.h, PLAB_PHASE_PRE_DRIFT) only
 // where a pass registered its fields, and only along free translational DOFs.
 void World::drift(double dt) {
-    const std::size_t n = bodies.size();
-    double body_work = 0;
-    const Vec lo = baseline_.lo, hi = baseline_.hi;
+    const std::size_t n = bodies.size(), n_blocks = body_blocks();
+    prepare_body_blocks();
+    const DriftCorrection corr = drift_correction();
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_blocks; ++b) drift_block(b, dt, corr);
+    finish_drift();
+}
+
+// The drift of block b. While x is at hand: the work of gravity, the
+// detector's domain check and the largest displacement since the last
+// build (displacement_exceeds_skin()).
+void World::drift_block(std::size_t b, double dt, const DriftCorrection& corr) {
+    const std::size_t i0 = b * kBodyBlock, i1 = std::min(bodies.size(), i0 + kBodyBlock);
+    const Vec lo = baseline_.lo, hi = baseline_.hi, g = gravity;  // copies: no reload after each store
+    const bool tracked = position_at_build_.size() == bodies.size();
+    const Vec* built = tracked ? position_at_build_.data() : bodies.position.data();
+    double body_work = 0, max2 = 0;
     bool out = false;
-    const int cx = field_index(PLAB_DRIFT_CORRECTION_X), cy = field_index(PLAB_DRIFT_CORRECTION_Y),
-              cz = field_index(PLAB_DRIFT_CORRECTION_Z);
-    const bool corrected = cx >= 0 && cy >= 0 && cz >= 0;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = i0; i < i1; ++i) {
         Vec dx = bodies.velocity[i] * dt;
-        if (corrected) {
+        if (corr.on) {
             const std::uint8_t fix = bodies.fixity[i];
-            const double c[3] = {fields_[cx][i], fields_[cy][i], fields_[cz][i]};
             for (int k = 0; k < 3; ++k)
-                if (!(fix & (dof_x << k))) dx[k] += c[k] * dt;
+                if (!(fix & (dof_x << k))) dx[k] += corr.field[k][i] * dt;
         }
         Vec& x = bodies.position[i];
         x += dx;
-        body_work += bodies.mass[i] * gravity.dot(dx);  // exact for a constant force
-        // the detector's domain check, while x is at hand (a NaN fails every comparison)
-        out |= !(x.x() >= lo.x() && x.x() <= hi.x() && x.y() >= lo.y() && x.y() <= hi.y() && x.z() >= lo.z() &&
-                 x.z() <= hi.z() && std::fabs(x.x() + x.y() + x.z()) < kInf);
+        body_work += bodies.mass[i] * g.dot(dx);  // exact for a constant force
+        max2 = std::max(max2, (x - built[i]).squaredNorm());
+        // a NaN fails every comparison (& rather than &&: no branch per comparison)
+        out |= !((x.x() >= lo.x()) & (x.x() <= hi.x()) & (x.y() >= lo.y()) & (x.y() <= hi.y()) & (x.z() >= lo.z()) &
+                 (x.z() <= hi.z()) & (std::fabs(x.x() + x.y() + x.z()) < kInf));
+    }
+    block_body_work_[b] = body_work;
+    block_max_drift2_[b] = tracked ? max2 : -1;
+    block_out_[b] = out;
+}
+
+// The blocks' drift results, in block order.
+void World::finish_drift() {
+    double body_work = 0, max2 = 0;
+    bool out = false;
+    for (std::size_t b = 0; b < body_blocks(); ++b) {
+        body_work += block_body_work_[b];
+        max2 = block_max_drift2_[b] < 0 ? -1 : std::max(max2, block_max_drift2_[b]);
+        out |= block_out_[b] != 0;
     }
     energies.body += body_work;
     left_domain_ = out;
+    max_drift2_ = position_at_build_.size() == bodies.size() ? max2 : -1;
 }
 
 // For a plug-in author: the model and contact whose output went non-finite.
@@ -458,18 +630,10 @@ void World::check_finite() {
 // Energy flows over the step just taken; states (kinetic, strain) are
 // recomputed at the synchronised velocities.
 void World::sum_energies(double dt) {
-    double kinetic = 0, boundary = 0;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const Vec& v = bodies.velocity[i];
-        const Vec& w = bodies.angular_velocity[i];
-        kinetic += 0.5 * bodies.mass[i] * v.squaredNorm() + 0.5 * bodies.inertia[i] * w.squaredNorm();
-        boundary += bodies.applied_force[i].dot(v) * dt + bodies.applied_moment[i].dot(w) * dt;
-        const std::uint8_t fix = bodies.fixity[i] & ~bodies.implicit_fixity();
-        if (fix)  // reaction at a fixed degree of freedom does the work that keeps its velocity
-            for (int c = 0; c < 3; ++c) {
-                if (fix & (dof_x << c)) boundary -= bodies.force[i][c] * v[c] * dt;
-                if (fix & (dof_rx << c)) boundary -= bodies.moment[i][c] * w[c] * dt;
-            }
+    double kinetic = 0, boundary = 0;  // the bodies' part, per block (kick(), body_energies())
+    for (std::size_t b = 0; b < block_kinetic_.size(); ++b) {
+        kinetic += block_kinetic_[b];
+        boundary += block_boundary_[b];
     }
     // contact energies, summed per batch of rows by scatter_rows()
     double strain = 0;

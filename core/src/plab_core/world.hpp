@@ -263,7 +263,16 @@ private:
         std::size_t begin, end;  // rows
         std::int32_t lo, hi;     // bodies touched (hi < lo: none)
         std::size_t offset;      // into partial_fm_
+        // Bodies with a slot in partial_fm_: every body lo..hi, or, for a
+        // `listed` chunk (ball–wall rows touch a few balls spread over all
+        // of them), only the balls it touches: chunk_bodies_[first_listed..]
+        // ascending, row k's ball at slot listed_slot_[set][k].
+        std::size_t slots = 0;
+        bool listed = false;
+        std::size_t first_listed = 0;
     };
+    std::vector<std::int32_t> chunk_bodies_;
+    std::vector<std::vector<std::uint32_t>> listed_slot_;
     std::vector<Chunk> chunks_;
     std::vector<std::uint32_t> set_chunks_;  // chunks of set si: [set_chunks_[si], set_chunks_[si + 1])
     std::vector<double> partial_fm_;
@@ -278,6 +287,7 @@ private:
     // last list): only such rows need their history reset when out of range
     std::vector<std::vector<std::uint8_t>> live_;
     void build_chunks();
+    void list_chunk_bodies(Chunk& ch);
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
     bool in_range_marked_ = false;   // mark_ball_rows_in_range() ran at the current positions
@@ -359,6 +369,9 @@ private:
     // whether the ball–ball rows of a model go to it packed (force_sweep): no
     // model of the world has a rates stage and this one accumulates no field
     bool packs_balls(const ModelInstance& inst) const;
+    // the largest squared displacement since the last build, taken by
+    // drift() while the positions are at hand (-1: no reference positions)
+    double max_drift2_ = -1;
     bool displacement_exceeds_skin() const;
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
@@ -395,11 +408,43 @@ private:
     void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
                            std::vector<std::array<std::int32_t, 2>>& pairs) const;
     void force_pass();
-    bool finish_body_force(std::size_t body, double& local_work);
+    void damp_body(std::size_t body, Vec& force, Vec& moment, double& local_work) const;
+    void add_chunk_sums(std::size_t first_body, std::size_t end_body);
+    bool finish_bodies(std::size_t first_body, std::size_t end_body, double& local_work);
     bool reduce();  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
-    void kick(double half_dt);
+    // The per-body loops work on fixed blocks of bodies; a sum over the
+    // bodies is taken per block and the blocks added in order, so it does
+    // not depend on the thread count.
+    static constexpr std::size_t kBodyBlock = 1024;
+    std::size_t body_blocks() const { return (bodies.size() + kBodyBlock - 1) / kBodyBlock; }
+    // 1/m and 1/I of every body, for the kicks; set by prepare() (a change
+    // of mass or inertia marks the world dirty, as any scene change does)
+    std::vector<double> inv_mass_, inv_inertia_;
+    void cache_inverse_masses();
+    // per block: kinetic energy at the synchronised velocities and the work
+    // of applied loads and fixed-DOF reactions over the last step, from the
+    // closing kick (kick(h, true)) or body_energies()
+    std::vector<double> block_kinetic_, block_boundary_;
+    std::vector<double> block_local_work_;  // per block: work of local and viscous damping (reduce)
+    // per block, from the drift: work of gravity, largest squared
+    // displacement since the build (-1: no reference), a position out of
+    // the domain or not finite
+    std::vector<double> block_body_work_, block_max_drift2_;
+    std::vector<std::uint8_t> block_out_;
+    struct DriftCorrection {
+        bool on = false;
+        std::array<const double*, 3> field{};
+    };
+    DriftCorrection drift_correction();
+    void prepare_body_blocks();
+    void kick_block_of_bodies(std::size_t block, double half_dt, bool closing);
+    void kick(double half_dt, bool closing = false);
+    void kick_and_drift(double dt);
+    void body_energies(double dt);
     void drift(double dt);
+    void drift_block(std::size_t block, double dt, const DriftCorrection& corr);
+    void finish_drift();
     void check_finite();
     std::string non_finite_contact(std::size_t body) const;
     void sum_energies(double dt);
