@@ -29,7 +29,7 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         std::copy_n(marked->row.data() + begin, n_active, d.row);
         std::copy_n(marked->distance.data() + begin, n_active, d.distance);
     } else {
-        n_active = range_test_rows(inst, si, begin, end, d);
+        n_active = range_test_rows(inst, si, begin, end, d.row, d.distance, nullptr);  // (gap: below)
     }
     bool exceeded = false;
     for (std::size_t a = 0; a < n_active; ++a) {

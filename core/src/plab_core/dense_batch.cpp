@@ -18,14 +18,15 @@ inline std::uint64_t bits(double v) {
 }
 } // namespace
 
-// Rows [begin, end): the range test of every candidate (gap and the active
-// flag stay in the set's columns, for every reader), the rows in range listed
-// in d.row with their gap and centre distance, and the history of rows that
-// left the range back to its declared defaults (a separated contact is
-// forgotten, as the adapter's batch loop did; a row that stays out of range
-// keeps them). Returns how many rows are in range.
+// Rows [begin, end) of set si, at most one batch: the range test of every
+// candidate (gap and the active flag stay in the set's columns, for every
+// reader), the rows in range listed in `row` with their centre distance
+// (`distance`) and gap (`gap`) where those are given, and the history of
+// rows that left the range back to its declared defaults (a separated
+// contact is forgotten, as the adapter's batch loop did; a row that stays
+// out of range keeps them). Returns how many rows are in range.
 std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
-                                   DenseBatch& d) {
+                                   std::uint32_t* row, double* distance, double* gap) {
     ContactSet& s = *sets_[si];
     const RangeTest in_range(inst);
     const std::size_t stride = std::size_t(inst.stride);
@@ -40,13 +41,13 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
     std::size_t n_active = 0, n_idle = 0;
     for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
         const double dist = (x[end2[k]] - x[end1[k]]).norm();
-        const double gap = dist - r1[k] - r2[k];
-        const bool active = in_range(history, k, dist, gap);
-        gap_col[k] = gap;  // (the centre distance of a ball–ball row is read by the model only)
+        const double g = dist - r1[k] - r2[k];
+        const bool active = in_range(history, k, dist, g);
+        gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
         active_col[k] = active;
-        d.gap[n_active] = gap;
-        d.distance[n_active] = dist;
-        d.row[n_active] = std::uint32_t(k);
+        if (gap) gap[n_active] = g;
+        if (distance) distance[n_active] = dist;
+        row[n_active] = std::uint32_t(k);
         idle[n_idle] = std::uint32_t(k);
         n_active += active;
         n_idle += !active & (live[k] != 0);  // just left the range: history to forget
@@ -62,7 +63,7 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
 // max_overlap.
 bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                            DenseBatch& d) {
-    const std::size_t n_active = range_test_rows(inst, si, begin, end, d);
+    const std::size_t n_active = range_test_rows(inst, si, begin, end, d.row, d.distance, d.gap);
     const ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);
     const auto& B = bodies;

@@ -37,45 +37,25 @@ void World::mark_ball_rows_in_range() {
     in_range_marked_ = true;
 }
 
-// Set si's candidates, batch by batch (threads take whole batches): the
-// rows in range of batch b listed from b * kContactBatch on, then the
+// Set si's candidates, batch by batch (threads take whole batches), with
+// the packers' range test (range_test_rows: flags, gaps, history of rows
+// that left the range): the rows in range of batch b listed from
+// b * kContactBatch on, then the
 // passes' contacts appended in batch order, so the list is the same for
 // any thread count.
 void World::mark_set_in_range(std::uint32_t si, bool list) {
-    ContactSet& s = *sets_[si];
     const ModelInstance& inst = *set_owner_[si];
     RowsInRange& r = in_range_[si];
     const bool centre = on_centre_path(inst);
-    const std::size_t n = s.size(), n_batches = (n + kContactBatch - 1) / kContactBatch;
+    const std::size_t n = sets_[si]->size(), n_batches = (n + kContactBatch - 1) / kContactBatch;
     r.count.resize(n_batches);
     r.row.resize(n);
     r.distance.resize(centre ? n : 0);
-    const RangeTest in_range(inst);
-    const auto& B = bodies;
 #pragma omp parallel for schedule(static) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::size_t k0 = b * kContactBatch, k1 = std::min(n, k0 + kContactBatch);
-        std::uint32_t* row = r.row.data() + k0;
-        double* distance = centre ? r.distance.data() + k0 : nullptr;
-        // the columns' addresses held here: the stores below could alias them otherwise
-        const std::int32_t *end1 = s.end1.data(), *end2 = s.end2.data();
-        const double *radius1 = s.radius1.data(), *radius2 = s.radius2.data();
-        const Vec* x = B.position.data();
-        double* gaps = s.gap.data();
-        std::uint8_t* flags = s.active.data();
-        std::size_t c = 0;
-        for (std::size_t k = k0; k < k1; ++k) {  // no branch per row: in-range flags follow no pattern
-            const double dist = (x[end2[k]] - x[end1[k]]).norm();
-            const double gap = dist - radius1[k] - radius2[k];
-            const bool active = in_range(s.history, k, dist, gap);
-            gaps[k] = gap;
-            flags[k] = active;
-            row[c] = std::uint32_t(k);
-            if (centre) distance[c] = dist;
-            c += active;
-        }
-        r.count[b] = std::uint32_t(c);
-        if (centre) forget_left_rows(inst, si, k0, k1);
+        r.count[b] = std::uint32_t(range_test_rows(inst, si, k0, k1, r.row.data() + k0,
+                                                   centre ? r.distance.data() + k0 : nullptr, nullptr));
     }
     r.listed = centre;
     if (list) append_pass_contacts(si);
@@ -99,21 +79,6 @@ void World::append_pass_contacts(std::uint32_t si) {
             pc_end2_[at + a] = s.end2[row[a]];
         }
         at += r.count[b];
-    }
-}
-
-// The history of rows [k0, k1) that just left the range back to the model's
-// declared defaults (a separated contact is forgotten, as range_test_rows()
-// does), after the active flags of those rows were set.
-void World::forget_left_rows(const ModelInstance& inst, std::uint32_t si, std::size_t k0, std::size_t k1) {
-    ContactSet& s = *sets_[si];
-    std::uint8_t* live = live_[si].data();
-    const std::size_t stride = std::size_t(inst.stride);
-    if (stride == 0) return;  // nothing to forget (SPH), and `live` is read for history only
-    for (std::size_t k = k0; k < k1; ++k) {
-        if (live[k] && !s.active[k])
-            for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = inst.desc->history[h].default_value;
-        live[k] = s.active[k];
     }
 }
 

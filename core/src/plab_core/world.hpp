@@ -377,7 +377,7 @@ private:
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     std::size_t range_test_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin,
-                                std::size_t end, DenseBatch& d);
+                                std::size_t end, std::uint32_t* row, double* distance, double* gap);
     bool pack_ball_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end,
                         DenseBatch& d);
     void unpack_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
@@ -401,7 +401,6 @@ private:
     void mark_ball_rows_in_range();  // pass_contacts.cpp
     void mark_set_in_range(std::uint32_t set_index, bool list);
     void append_pass_contacts(std::uint32_t set_index);
-    void forget_left_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end);
     void accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i);
     void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);
