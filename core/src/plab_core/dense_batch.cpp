@@ -107,18 +107,18 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
     return exceeded;
 }
 
+// A packed set's normal and point with the packers' arithmetic (the range
+// test's distance, centre_normal(), ball_contact_point()), not the whole
+// pair kinematics: a reader needs neither the velocities nor the spin.
 Vec World::contact_normal(const ContactSet& s, std::size_t k) const {
     if (!s.packed) return Vec(&s.normal[3 * k]);
-    const std::int32_t i = s.end1[k], j = s.end2[k];
-    const double dist = (bodies.position[j] - bodies.position[i]).norm();  // as pack_ball_rows()
-    return ball_pair_kinematics(bodies, i, j, s.radius1[k], dist, s.gap[k]).normal;
+    const Vec &xi = bodies.position[s.end1[k]], &xj = bodies.position[s.end2[k]];
+    return centre_normal(xi, xj, (xj - xi).norm());
 }
 
 Vec World::contact_point(const ContactSet& s, std::size_t k) const {
     if (!s.packed) return Vec(&s.point[3 * k]);
-    const std::int32_t i = s.end1[k], j = s.end2[k];
-    const double dist = (bodies.position[j] - bodies.position[i]).norm();
-    return ball_pair_kinematics(bodies, i, j, s.radius1[k], dist, s.gap[k]).point;
+    return ball_contact_point(bodies.position[s.end1[k]], contact_normal(s, k), s.radius1[k], s.gap[k]);
 }
 
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols) {

@@ -109,12 +109,17 @@ struct PairKinematics {
 inline Vec centre_normal(const Vec& xi, const Vec& xj, double dist) {
     return dist > 0 ? Vec((xj - xi) * (1.0 / dist)) : Vec::UnitX();
 }
+// The contact point of two balls: on the normal from ball i's centre xi,
+// its radius ri plus half the gap further (the middle of the overlap).
+inline Vec ball_contact_point(const Vec& xi, const Vec& normal, double ri, double gap) {
+    return xi + normal * (ri + 0.5 * gap);
+}
 inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
                                            double gap) {
     const Vec& xi = B.position[i];
     PairKinematics p;
     p.normal = centre_normal(xi, B.position[j], dist);
-    p.point = xi + p.normal * (ri + 0.5 * gap);
+    p.point = ball_contact_point(xi, p.normal, ri, gap);
     const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(p.point - B.position[j]);
     const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(p.point - xi);
     p.rel_velocity = vj - vi;
