@@ -53,7 +53,6 @@ public:
         u64(v.size());
         for (const Vec& x : v) vec(x);
     }
-    void reserve(std::size_t bytes) { data_.reserve(bytes); }
     const std::string& bytes() const { return data_; }
     std::string take() { return std::move(data_); }  // the bytes, without a copy; the writer is spent
 
