@@ -216,9 +216,16 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     set.key1.swap(t.nk1);
     set.key2.swap(t.nk2);
     set.history.swap(t.history);
-    set.packed = !set.with_wall && packs_balls(inst);
-    set.resize_columns(n_unique, int(inst.fields_accumulated.size()));
+    lay_out_columns(inst, set);
     fill_pair_constants(set);
+}
+
+// A set's columns for its rows, packed or full as the world's models want
+// (packs_balls): after a rebuild, a restore, or a pass that needs the full
+// columns back.
+void World::lay_out_columns(const ModelInstance& inst, ContactSet& set) {
+    set.packed = !set.with_wall && packs_balls(inst);
+    set.resize_columns(set.size(), int(inst.fields_accumulated.size()));
 }
 
 // `order`: the rows of keys (k1, k2) sorted by k1 then k2, each key once.

@@ -263,8 +263,7 @@ void World::restore_snapshot() {
         for (ContactSet* c : {&inst->balls, &inst->walls}) {
             const SetState& st = s.sets[k++];
             c->end1 = st.end1; c->end2 = st.end2; c->key1 = st.key1; c->key2 = st.key2; c->history = st.history;
-            c->packed = !c->with_wall && packs_balls(*inst);
-            c->resize_columns(c->end1.size(), int(inst->fields_accumulated.size()));
+            lay_out_columns(*inst, *c);
         }
     // the per-body row lists must name the restored rows, not those of the
     // state that failed (a reader such as stable_timestep() walks them before
@@ -324,8 +323,7 @@ void World::force_pass() {
         bool repacked = false;
         for (auto& inst : instances_)
             if (inst->balls.packed != packs_balls(*inst)) {
-                inst->balls.packed = !inst->balls.packed;
-                inst->balls.resize_columns(inst->balls.size(), int(inst->fields_accumulated.size()));
+                lay_out_columns(*inst, inst->balls);
                 fill_pair_constants(inst->balls);
                 repacked = true;
             }

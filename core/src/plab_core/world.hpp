@@ -369,6 +369,7 @@ private:
     // whether the ball–ball rows of a model go to it packed (force_sweep): no
     // model of the world has a rates stage and this one accumulates no field
     bool packs_balls(const ModelInstance& inst) const;
+    void lay_out_columns(const ModelInstance& inst, ContactSet& set);
     // the largest squared displacement since the last build, taken by
     // drift() while the positions are at hand (-1: no reference positions)
     double max_drift2_ = -1;
