@@ -550,6 +550,7 @@ void World::drift(double dt) {
 void World::drift_block(std::size_t b, double dt, const DriftCorrection& corr) {
     const std::size_t i0 = b * kBodyBlock, i1 = std::min(bodies.size(), i0 + kBodyBlock);
     const Vec lo = baseline_.lo, hi = baseline_.hi, g = gravity;  // copies: no reload after each store
+    // (no reference positions yet: measured against x itself; finish_drift() knows)
     const bool tracked = position_at_build_.size() == bodies.size();
     const Vec* built = tracked ? position_at_build_.data() : bodies.position.data();
     double body_work = 0, max2 = 0;
@@ -570,7 +571,7 @@ void World::drift_block(std::size_t b, double dt, const DriftCorrection& corr) {
                  (x.z() <= hi.z()) & (std::fabs(x.x() + x.y() + x.z()) < kInf));
     }
     block_body_work_[b] = body_work;
-    block_max_drift2_[b] = tracked ? max2 : -1;
+    block_max_drift2_[b] = max2;
     block_out_[b] = out;
 }
 
@@ -580,12 +581,12 @@ void World::finish_drift() {
     bool out = false;
     for (std::size_t b = 0; b < body_blocks(); ++b) {
         body_work += block_body_work_[b];
-        max2 = block_max_drift2_[b] < 0 ? -1 : std::max(max2, block_max_drift2_[b]);
+        max2 = std::max(max2, block_max_drift2_[b]);
         out |= block_out_[b] != 0;
     }
     energies.body += body_work;
     left_domain_ = out;
-    max_drift2_ = position_at_build_.size() == bodies.size() ? max2 : -1;
+    max_drift2_ = position_at_build_.size() == bodies.size() ? max2 : -1;  // -1: no reference, rebuild
 }
 
 // For a plug-in author: the model and contact whose output went non-finite.

@@ -428,7 +428,7 @@ private:
     std::vector<double> block_kinetic_, block_boundary_;
     std::vector<double> block_local_work_;  // per block: work of local and viscous damping (reduce)
     // per block, from the drift: work of gravity, largest squared
-    // displacement since the build (-1: no reference), a position out of
+    // displacement since the build, a position out of
     // the domain or not finite
     std::vector<double> block_body_work_, block_max_drift2_;
     std::vector<std::uint8_t> block_out_;
