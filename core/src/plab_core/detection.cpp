@@ -322,7 +322,8 @@ void World::build_entries() {
     entry_start_.assign(n + 1, 0);
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         const ContactSet* s = sets_[si];
-        for (std::size_t k = 0; listed(si) && k < s->size(); ++k) {
+        if (!listed(si)) continue;
+        for (std::size_t k = 0; k < s->size(); ++k) {
             ++entry_start_[s->end1[k] + 1];
             if (!s->with_wall) ++entry_start_[s->end2[k] + 1];
         }
@@ -333,7 +334,8 @@ void World::build_entries() {
     constexpr std::uint32_t end2_bit = 1u << 31;
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         const ContactSet* s = sets_[si];
-        for (std::uint32_t k = 0; listed(si) && k < s->size(); ++k) {
+        if (!listed(si)) continue;
+        for (std::uint32_t k = 0; k < s->size(); ++k) {
             entries_[fill[s->end1[k]]++] = {si, k};
             if (!s->with_wall) entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
         }

@@ -596,13 +596,15 @@ StableStep World::stable_timestep() {
     const ContactSet* limit_set = nullptr;
     std::size_t limit_row = 0;
     for (auto& inst : instances_)
-        for (const ContactSet* s : {&inst->balls, &inst->walls})
+        for (const ContactSet* s : {&inst->balls, &inst->walls}) {
+            if (s->dt_limit.empty()) continue;  // a set that keeps no step limit has none (ContactSet::keeps)
             for (std::size_t k = 0; k < s->size(); ++k)
-                if (s->active[k] && s->dt_limit_at(k) < best.critical) {
-                    best.critical = s->dt_limit_at(k);
+                if (s->active[k] && s->dt_limit[k] < best.critical) {
+                    best.critical = s->dt_limit[k];
                     limit_model = inst.get(); limit_set = s; limit_row = k;
                     ball = bodies.size();
                 }
+        }
     if (limit_model) {
         best.limited_by = "model " + limit_model->model + " for groups " + contact_groups(*limit_set, limit_row) +
                           ": its step limit";
