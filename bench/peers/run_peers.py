@@ -11,11 +11,16 @@ physics check: pair contacts and kinetic energy at the end of each code (SPH:
 the fluid's mean height instead of contacts, and both must agree within 3 %).
 plab's throughput is from its run summary (the solve loop); the peers' from
 their "Loop time" line. Threads: plab OpenMP threads, peers MPI ranks. Each
-run's peak resident memory (wait4 maxrss) and the load average are printed,
-because the machine may be shared. Idle threads and ranks yield the CPU
-instead of spinning (plab: OMP_WAIT_POLICY=PASSIVE unless set; Open MPI:
-mpi_yield_when_idle 1): on a shared machine spinning made 2-thread plab 11x
-slower (45.8 s against 4.1 s wall for 2000 settled gran3d steps).
+run's peak resident memory (wait4 maxrss) and the load average are printed.
+Every code runs with its own defaults, as a user would run it: OpenMP's and
+Open MPI's idle threads and ranks spin briefly before they sleep. On a
+machine shared with other work, spinning steals the others' CPU (an earlier
+run under load 11-15 made 2-thread plab 11x slower); --shared-machine then
+makes idle threads and ranks yield instead (plab: OMP_WAIT_POLICY=PASSIVE;
+Open MPI: mpi_yield_when_idle 1), and the table says so. On an idle
+machine PASSIVE costs plab a futex wake per parallel region (gran3d at 2
+threads: 12.7 s against 7.6 s wall, 2026-11-22); the peers' loop times do
+not change.
 """
 import argparse
 import json
@@ -46,7 +51,7 @@ def run_measured(cmd, env, capture):
     return text, usage.ru_maxrss / 1024.0, usage.ru_utime + usage.ru_stime  # Linux: kB
 
 
-def run_plab(plab, scene, threads, steps, work):
+def run_plab(plab, scene, threads, steps, work, shared):
     out = os.path.join(work, "plab_out")
     sph = scene == "sph"
     sc = json.load(open(os.path.join(HERE, (SPH_SCENE if sph else scene) + ".json")))
@@ -57,7 +62,8 @@ def run_plab(plab, scene, threads, steps, work):
     path = os.path.join(work, scene + "_run.json")
     json.dump(sc, open(path, "w"))
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
-    env.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+    if shared:
+        env.setdefault("OMP_WAIT_POLICY", "PASSIVE")
     _, rss, cpu = run_measured([plab, "run", path, "--out", out], env, False)
     s = json.load(open(os.path.join(out, "summary.json")))
     if sph:
@@ -68,13 +74,13 @@ def run_plab(plab, scene, threads, steps, work):
     return s["particle_steps_per_second"], pairs, s["energies"]["kinetic"], s["state_hash"], rss, cpu
 
 
-def run_peer(exe, infile, dim, data, threads, steps):
+def run_peer(exe, infile, dim, data, threads, steps, shared):
     cmd = [exe, "-in", os.path.join(HERE, infile), "-var", "steps", str(steps), "-log", "none"]
     if data:
         cmd += ["-var", "dim", str(dim), "-var", "data", data]
     if threads > 1:
-        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "mpi_yield_when_idle", "1",
-               "-np", str(threads)] + cmd
+        yield_idle = ["--mca", "mpi_yield_when_idle", "1"] if shared else []
+        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe"] + yield_idle + ["-np", str(threads)] + cmd
     env = dict(os.environ, OMP_NUM_THREADS="1")
     text, rss, cpu = run_measured(cmd, env, True)
     loop = float(re.search(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", text).group(1))
@@ -92,12 +98,15 @@ def main():
     ap.add_argument("--scenes", default="gran3d,gran2d,sph")
     ap.add_argument("--sph-steps", type=int, default=8000)
     ap.add_argument("--codes", default="plab,lammps,liggghts")
+    ap.add_argument("--shared-machine", action="store_true",
+                    help="idle threads and ranks yield (OMP_WAIT_POLICY=PASSIVE, mpi_yield_when_idle 1)")
     a = ap.parse_args()
     work = tempfile.mkdtemp(prefix="plab_peers_")
     subprocess.run([sys.executable, os.path.join(HERE, "make_peer_data.py"), work], check=True)
     threads = [int(t) for t in a.threads.split(",")]
     codes = a.codes.split(",")
     results = {}
+    print("idle threads/ranks: " + ("yield (--shared-machine)" if a.shared_machine else "each code's default (spin, then sleep)"))
     print(f"load average at start: {' '.join(f'{x:.2f}' for x in os.getloadavg())}", flush=True)
     for rep in range(a.reps):
         for scene in a.scenes.split(","):
@@ -108,14 +117,14 @@ def main():
                     if scene == "sph" and code == "lammps":
                         continue  # no SPH package in Debian's LAMMPS
                     if code == "plab":
-                        r = run_plab(a.plab, scene, t, steps, work)
+                        r = run_plab(a.plab, scene, t, steps, work, a.shared_machine)
                     elif scene == "sph":
-                        r = run_peer("liggghts", "liggghts_sph.in", dim, None, t, steps)
+                        r = run_peer("liggghts", "liggghts_sph.in", dim, None, t, steps, a.shared_machine)
                     elif code == "lammps":
-                        r = run_peer("lmp", "lammps_gran.in", dim, os.path.join(work, scene + ".data"), t, steps)
+                        r = run_peer("lmp", "lammps_gran.in", dim, os.path.join(work, scene + ".data"), t, steps, a.shared_machine)
                     else:
                         data = os.path.join(work, scene + ("_liggghts" if dim == 2 else "") + ".data")
-                        r = run_peer("liggghts", "liggghts_gran.in", dim, data, t, steps)
+                        r = run_peer("liggghts", "liggghts_gran.in", dim, data, t, steps, a.shared_machine)
                     results.setdefault((scene, t, code), []).append(r)
                     second = f"fluid mean height {r[1]:.5g} m" if scene == "sph" else f"{r[1]:.0f} pair contacts"
                     print(f"  rep {rep + 1} {scene} {code} x{t}: {r[0] / 1e6:.2f} M particle-steps/s, "
