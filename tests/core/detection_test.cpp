@@ -64,13 +64,13 @@ TEST_CASE("shear-force history survives a neighbour-list rebuild", "[detection]"
     const ContactSet& s = w.instances()[0]->balls;
     std::map<std::pair<BodyId, BodyId>, double> before;
     for (std::size_t k = 0; k < s.size(); ++k)
-        if (s.active[k]) before[{s.key1[k], s.key2[k]}] = s.history[3 * k] + 2 * s.history[3 * k + 1];
+        if (s.active[k]) before[w.row_keys(s, k)] = s.history[3 * k] + 2 * s.history[3 * k + 1];
     REQUIRE(before.size() > 20);
     w.mark_dirty();  // force a rebuild: rows are re-created and re-sorted
     w.prepare();
     std::size_t matched = 0;
     for (std::size_t k = 0; k < s.size(); ++k) {
-        auto it = before.find({s.key1[k], s.key2[k]});
+        auto it = before.find(w.row_keys(s, k));
         if (it == before.end()) continue;
         // the re-evaluation re-projects the shear force: equal to rounding, not reset
         CHECK(s.history[3 * k] + 2 * s.history[3 * k + 1] == Approx(it->second).epsilon(1e-12));

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <tuple>
 
 namespace fs = std::filesystem;
 
@@ -195,12 +196,17 @@ std::vector<std::pair<const char*, std::vector<double>*>> double_columns(Contact
             {"dt_limit", &s.dt_limit}, {"break_energy", &s.break_energy}};
 }
 
-void save_set(const ModelInstance& inst, const ContactSet& cs, CheckpointWriter& out) {
+// The keys are written though the world derives them from the ends
+// (World::row_keys): the file stays readable as before, and a restart checks
+// that its rows name the same bodies.
+void save_set(const World& w, const ModelInstance& inst, const ContactSet& cs, CheckpointWriter& out) {
     auto& s = const_cast<ContactSet&>(cs);  // double_columns() hands out pointers; nothing is changed
     out.column(s.end1);
     out.column(s.end2);
-    out.column(s.key1);
-    out.column(s.key2);
+    std::vector<BodyId> key1(s.size()), key2(s.size());
+    for (std::size_t k = 0; k < s.size(); ++k) std::tie(key1[k], key2[k]) = w.row_keys(s, k);
+    out.column(key1);
+    out.column(key2);
     out.column(s.active);
     out.column(s.interior);
     // history by slot: one column per slot name (see save_instance)
@@ -221,16 +227,19 @@ void save_set(const ModelInstance& inst, const ContactSet& cs, CheckpointWriter&
 }
 
 // `slot_of_file[h]`: the model's slot for the file's slot h.
-void load_set(const ModelInstance& inst, ContactSet& s, const std::vector<int>& slot_of_file, CheckpointReader& in) {
+// `key1`, `key2`: the file's keys of the rows, for the caller to check
+// against the ends.
+void load_set(const ModelInstance& inst, ContactSet& s, const std::vector<int>& slot_of_file, CheckpointReader& in,
+              std::vector<BodyId>& key1, std::vector<BodyId>& key2) {
     s.end1 = in.column<std::int32_t>();
     s.end2 = in.column<std::int32_t>();
-    s.key1 = in.column<BodyId>();
-    s.key2 = in.column<BodyId>();
+    key1 = in.column<BodyId>();
+    key2 = in.column<BodyId>();
     const std::size_t n = s.end1.size();
     s.resize_columns(n, int(inst.fields_accumulated.size()));
     s.active = in.column<std::uint8_t>();
     s.interior = in.column<std::uint8_t>();
-    if (s.end2.size() != n || s.key1.size() != n || s.key2.size() != n || s.active.size() != n)
+    if (s.end2.size() != n || key1.size() != n || key2.size() != n || s.active.size() != n)
         in.fail("contact columns of model '" + inst.model + "' have different lengths");
     s.history.assign(n * inst.stride, 0.0);
     for (int h = 0; h < inst.stride; ++h)  // slots the file lacks start at their default
@@ -302,8 +311,8 @@ void WorldCheckpoint::save_contacts(const World& w, CheckpointWriter& out) {
         out.column(inst->props);
         out.u64(std::uint64_t(inst->stride));
         for (int h = 0; h < inst->stride; ++h) out.str(inst->desc->history[h].name);
-        save_set(*inst, inst->balls, out);
-        save_set(*inst, inst->walls, out);
+        save_set(w, *inst, inst->balls, out);
+        save_set(w, *inst, inst->walls, out);
     }
 }
 
@@ -437,14 +446,17 @@ void WorldCheckpoint::load_contacts(World& w, CheckpointReader& in) {
             slot_of_file.push_back(found);
         }
         inst->balls.packed = w.packs_balls(*inst);
-        load_set(*inst, inst->balls, slot_of_file, in);
-        load_set(*inst, inst->walls, slot_of_file, in);
-        for (const ContactSet* s : {&inst->balls, &inst->walls})
+        std::vector<BodyId> key1, key2;
+        for (ContactSet* s : {&inst->balls, &inst->walls}) {
+            load_set(*inst, *s, slot_of_file, in, key1, key2);
             for (std::size_t k = 0; k < s->size(); ++k) {
                 const bool ok = s->end1[k] >= 0 && std::size_t(s->end1[k]) < w.bodies.size() && s->end2[k] >= 0 &&
                                 std::size_t(s->end2[k]) < (s->with_wall ? w.walls.facets.size() : w.bodies.size());
                 if (!ok) in.fail("a contact of model '" + model + "' names a body or facet that does not exist");
+                if (w.row_keys(*s, k) != std::make_pair(key1[k], key2[k]))
+                    in.fail("a contact of model '" + model + "' names bodies by index and by id that differ");
             }
+        }
     }
 }
 

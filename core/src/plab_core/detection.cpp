@@ -172,40 +172,25 @@ void World::keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
 // Replace a set's rows by new candidate pairs, carrying history by key
 // (a pair listed twice — a bond that is also a candidate — is kept once).
 void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) {
-    const std::size_t n = pairs.size();
-    RebuildScratch& t = rebuild_scratch_;  // reused: a rebuild allocates nothing once the lists stop growing
-    t.k1.resize(n);
-    t.k2.resize(n);
-    for (std::size_t r = 0; r < n; ++r) {
-        auto& pr = pairs[r];
-        if (set.with_wall) {
-            t.k1[r] = bodies.id[pr[0]];
-            t.k2[r] = walls.facets[pr[1]].id;
-        } else {
+    if (!set.with_wall)
+        for (auto& pr : pairs)
             if (bodies.id[pr[0]] > bodies.id[pr[1]]) std::swap(pr[0], pr[1]);  // end 1 has the lower id
-            t.k1[r] = bodies.id[pr[0]];
-            t.k2[r] = bodies.id[pr[1]];
-        }
-    }
-    sort_by_keys(t.k1, t.k2, t.order);
-    const std::size_t n_unique = t.order.size();
+    sort_by_keys(set, pairs);
+    const std::size_t n = pairs.size();
     const int stride = inst.stride;
-    t.history.resize(n_unique * stride);
-    t.e1.resize(n_unique);
-    t.e2.resize(n_unique);
-    t.nk1.resize(n_unique);
-    t.nk2.resize(n_unique);
+    RebuildScratch& t = rebuild_scratch_;  // reused: a rebuild allocates nothing once the lists stop growing
+    t.history.resize(n * stride);
+    t.e1.resize(n);
+    t.e2.resize(n);
+    // the old rows are sorted by the same keys: one merge finds the survivors
     std::size_t old = 0;
-    for (std::size_t r = 0; r < n_unique; ++r) {
-        const std::size_t src = t.order[r];
-        t.e1[r] = pairs[src][0];
-        t.e2[r] = pairs[src][1];
-        t.nk1[r] = t.k1[src];
-        t.nk2[r] = t.k2[src];
-        while (old < set.size() && (set.key1[old] < t.nk1[r] || (set.key1[old] == t.nk1[r] && set.key2[old] < t.nk2[r])))
-            ++old;
+    for (std::size_t r = 0; r < n; ++r) {
+        t.e1[r] = pairs[r][0];
+        t.e2[r] = pairs[r][1];
+        const auto key = pair_keys(set.with_wall, pairs[r][0], pairs[r][1]);
+        while (old < set.size() && row_keys(set, old) < key) ++old;
         double* row = t.history.data() + r * stride;
-        if (old < set.size() && set.key1[old] == t.nk1[r] && set.key2[old] == t.nk2[r])
+        if (old < set.size() && row_keys(set, old) == key)
             std::copy_n(set.history.data() + old * stride, stride, row);  // survivor keeps its history
         else
             for (int h = 0; h < stride; ++h) row[h] = inst.desc->history[h].default_value;
@@ -213,8 +198,6 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     // swapped, not moved: the old list's buffers serve the next rebuild
     set.end1.swap(t.e1);
     set.end2.swap(t.e2);
-    set.key1.swap(t.nk1);
-    set.key2.swap(t.nk2);
     set.history.swap(t.history);
     lay_out_columns(inst, set);
     fill_pair_constants(set);
@@ -228,31 +211,26 @@ void World::lay_out_columns(const ModelInstance& inst, ContactSet& set) {
     set.resize_columns(set.size(), int(inst.fields_accumulated.size()));
 }
 
-// `order`: the rows of keys (k1, k2) sorted by k1 then k2, each key once.
-// build_ball_pairs() walks the bodies in index order, and ids follow the
-// indices unless bodies were deleted or reordered: the pairs then arrive
-// ordered by k1, and sorting each run of one k1 by k2 (a dozen rows) gives
-// the same order as one sort of the whole list, in a fraction of its time.
-void World::sort_by_keys(const std::vector<BodyId>& k1, const std::vector<BodyId>& k2, std::vector<std::size_t>& order) {
-    const std::size_t n = k1.size();
-    order.resize(n);
-    std::iota(order.begin(), order.end(), 0);
-    auto by_k2 = [&](std::size_t a, std::size_t b) { return k2[a] < k2[b]; };
-    if (std::is_sorted(k1.begin(), k1.end())) {
-        for (std::size_t a = 0; a < n;) {
-            std::size_t b = a + 1;
-            while (b < n && k1[b] == k1[a]) ++b;
-            std::sort(order.begin() + a, order.begin() + b, by_k2);
+// `pairs` sorted in place by their keys (row_keys: end 1, then end 2), each
+// pair once. build_ball_pairs() walks the bodies in index order, and ids
+// follow the indices: the pairs then arrive ordered by end 1, and sorting
+// each run of one end 1 by end 2 (a dozen pairs) gives the same order as one
+// sort of the whole list, in a fraction of its time. Bonded pairs kept
+// beyond the range (keep_bonded_pairs) come last, and take the full sort.
+void World::sort_by_keys(const ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) const {
+    auto key = [&](const std::array<std::int32_t, 2>& p) { return pair_keys(set.with_wall, p[0], p[1]); };
+    auto by_key1 = [&](const auto& a, const auto& b) { return key(a).first < key(b).first; };
+    auto by_key2 = [&](const auto& a, const auto& b) { return key(a).second < key(b).second; };
+    if (std::is_sorted(pairs.begin(), pairs.end(), by_key1)) {
+        for (auto a = pairs.begin(); a != pairs.end();) {
+            const auto b = std::find_if(a, pairs.end(), [&](const auto& p) { return key(p).first != key(*a).first; });
+            std::sort(a, b, by_key2);
             a = b;
         }
     } else {
-        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-            return k1[a] != k1[b] ? k1[a] < k1[b] : k2[a] < k2[b];
-        });
+        std::sort(pairs.begin(), pairs.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
     }
-    order.erase(std::unique(order.begin(), order.end(),
-                            [&](std::size_t a, std::size_t b) { return k1[a] == k1[b] && k2[a] == k2[b]; }),
-                order.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());  // equal ends, equal keys
 }
 
 // A set is packed when force_sweep() takes the dense path for it: no rates

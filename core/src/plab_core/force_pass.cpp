@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 namespace plab {
 
@@ -278,8 +279,7 @@ void World::record_breaks(ModelInstance& inst, ContactSet& s) {
         BondBreak b;
         b.step = step_count;
         b.time = time;
-        b.id1 = s.key1[k];
-        b.id2 = s.key2[k];
+        std::tie(b.id1, b.id2) = row_keys(s, k);
         b.point = contact_point(s, k);
         b.mode = int(-state);
         b.model = inst.model;

@@ -241,7 +241,7 @@ void World::take_snapshot() {
     for (const auto& inst : instances_)
         for (const ContactSet* c : {&inst->balls, &inst->walls}) {
             SetState& st = s.sets[k++];
-            st.end1 = c->end1; st.end2 = c->end2; st.key1 = c->key1; st.key2 = c->key2; st.history = c->history;
+            st.end1 = c->end1; st.end2 = c->end2; st.history = c->history;
         }
     s.valid = true;
 }
@@ -262,7 +262,7 @@ void World::restore_snapshot() {
     for (auto& inst : instances_)
         for (ContactSet* c : {&inst->balls, &inst->walls}) {
             const SetState& st = s.sets[k++];
-            c->end1 = st.end1; c->end2 = st.end2; c->key1 = st.key1; c->key2 = st.key2; c->history = st.history;
+            c->end1 = st.end1; c->end2 = st.end2; c->history = st.history;
             lay_out_columns(*inst, *c);
         }
     // the per-body row lists must name the restored rows, not those of the

@@ -14,17 +14,18 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace plab {
 
 // Candidate pairs of one model instance and one kind (ball–ball or ball–wall),
 // with their history and the columns of the contact batch. Rows are sorted by
-// the ids of the two ends; history is carried across rebuilds by that key.
+// the ids of the two ends (World::row_keys); history is carried across
+// rebuilds by that key.
 struct ContactSet {
     bool with_wall = false;
     std::vector<std::int32_t> end1, end2;
-    std::vector<BodyId> key1, key2;
     std::vector<double> history;
     // geometry (inputs of the batch). Ball–ball rows of models that take the
     // dense path (force_sweep) keep active, gap, normal and point up to date
@@ -222,6 +223,15 @@ public:
     // ball moved since), any other set's are read from its columns.
     Vec contact_normal(const ContactSet& s, std::size_t k) const;
     Vec contact_point(const ContactSet& s, std::size_t k) const;
+    // A row's key: the ball id of end 1 and the ball or facet id of end 2.
+    // Derived from the ends, not stored (16 B per row): balls and facets are
+    // only ever appended, so an index names the same body at every rebuild.
+    std::pair<BodyId, BodyId> pair_keys(bool with_wall, std::int32_t end1, std::int32_t end2) const {
+        return {bodies.id[end1], with_wall ? walls.facets[end2].id : bodies.id[end2]};
+    }
+    std::pair<BodyId, BodyId> row_keys(const ContactSet& s, std::size_t k) const {
+        return pair_keys(s.with_wall, s.end1[k], s.end2[k]);
+    }
     std::uint64_t state_hash() const;       // FNV-1a over positions, velocities, spins
     std::array<double, ph_count> phase_seconds{};
     std::uint64_t rebuilds = 0;
@@ -311,7 +321,6 @@ private:
     // the kept copy: contact rows by key and history; geometry is recomputed
     struct SetState {
         std::vector<std::int32_t> end1, end2;
-        std::vector<BodyId> key1, key2;
         std::vector<double> history;
     };
     struct Snapshot {
@@ -354,12 +363,10 @@ private:
     void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs);
-    static void sort_by_keys(const std::vector<BodyId>& k1, const std::vector<BodyId>& k2, std::vector<std::size_t>& order);
+    void sort_by_keys(const ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) const;
     // buffers of rebuild() and install_pairs(), kept between rebuilds
     struct RebuildScratch {
         std::vector<std::vector<std::array<std::int32_t, 2>>> ball_pairs, wall_pairs;
-        std::vector<BodyId> k1, k2, nk1, nk2;
-        std::vector<std::size_t> order;
         std::vector<std::int32_t> e1, e2;
         std::vector<double> history;
     };
