@@ -48,13 +48,16 @@ std::vector<std::string> split(const std::string& s, char sep) {
     return out;
 }
 
-const std::vector<Vec>& body_vectors(const Bodies& b, const std::string& which) {
-    if (which == "position") return b.position;
-    if (which == "velocity") return b.velocity;
-    if (which == "angular_velocity") return b.angular_velocity;
-    if (which == "applied_force") return b.applied_force;
-    return b.force;
+// The named vector of every body; null for loads never applied (all zero).
+const Vec* body_vectors(const Bodies& b, const std::string& which) {
+    if (which == "position") return b.position.data();
+    if (which == "velocity") return b.velocity.data();
+    if (which == "angular_velocity") return b.angular_velocity.data();
+    if (which == "applied_force") return b.has_applied_loads() ? b.applied_force.data() : nullptr;
+    return b.force.data();
 }
+
+Vec body_vector(const Vec* v, std::size_t i) { return v ? v[i] : Vec(Vec::Zero()); }
 
 int body_index(const World& w, BodyId id) {
     for (std::size_t i = 0; i < w.bodies.size(); ++i)
@@ -100,7 +103,7 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
         const int c = component(qn, parts[2]);
         return [id, which, c](const World& x) {
             const int i = body_index(x, id);
-            return i < 0 ? std::nan("") : pick(body_vectors(x.bodies, which)[i], c);
+            return i < 0 ? std::nan("") : pick(body_vector(body_vectors(x.bodies, which), std::size_t(i)), c);
         };
     }
     if (parts[0] == "group" && parts.size() == 4 && vec_name) {
@@ -113,10 +116,10 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
         return [group, op, which, c](const World& x) {
             double acc = op == "max" ? -kInf : (op == "min" ? kInf : 0.0);
             std::size_t count = 0;
-            const auto& v = body_vectors(x.bodies, which);
+            const Vec* v = body_vectors(x.bodies, which);
             for (std::size_t i = 0; i < x.bodies.size(); ++i) {
                 if (x.bodies.group[i] != group) continue;
-                const double s = pick(v[i], c);
+                const double s = pick(body_vector(v, i), c);
                 acc = op == "max" ? std::max(acc, s) : op == "min" ? std::min(acc, s) : acc + s;
                 ++count;
             }
@@ -212,7 +215,10 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
         }
         if (n.has("applied_force")) {
             const Vec f = n.at("applied_force").vec(dim);
-            on_balls.push_back([f](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.applied_force[i] = f; });
+            on_balls.push_back([f](World& w, const std::vector<int>& sel) {
+                if (!w.bodies.has_applied_loads()) w.bodies.enable_applied_loads();
+                for (int i : sel) w.bodies.applied_force[i] = f;
+            });
         }
         if (n.has("viscous_damping")) {
             const double c = n.at("viscous_damping").number(0.0, kInf, false, true);

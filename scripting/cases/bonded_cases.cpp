@@ -118,6 +118,7 @@ Cantilever static_cantilever(double r, double load, double ratio, const Strength
     const int tip = tip_index(w);
     const double y0 = w.bodies.position[tip].y();
     const std::vector<Vec> initial = w.bodies.position;
+    w.bodies.enable_applied_loads();
     w.bodies.applied_force[tip] = Vec(0, load, 0);
     w.prepare();
     while (out.steps < 20000000) {

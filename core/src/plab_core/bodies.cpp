@@ -12,6 +12,11 @@ double Bodies::inertia_of(int dim, double r, double m) {
     return dim == 2 ? 0.5 * m * r * r : 0.4 * m * r * r;
 }
 
+void Bodies::enable_applied_loads() {
+    applied_force.resize(size(), Vec::Zero());
+    applied_moment.resize(size(), Vec::Zero());
+}
+
 BodyId Bodies::add(const BallSpec& s) {
     const BodyId new_id = next_id++;
     id.push_back(new_id);
@@ -22,8 +27,10 @@ BodyId Bodies::add(const BallSpec& s) {
     angular_velocity.push_back(w);
     force.push_back(Vec::Zero());
     moment.push_back(Vec::Zero());
-    applied_force.push_back(Vec::Zero());
-    applied_moment.push_back(Vec::Zero());
+    if (has_applied_loads()) {
+        applied_force.push_back(Vec::Zero());
+        applied_moment.push_back(Vec::Zero());
+    }
     radius.push_back(s.radius);
     const double m = mass_of(dim, s.radius, s.density);
     mass.push_back(m);

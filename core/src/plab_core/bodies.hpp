@@ -27,7 +27,9 @@ struct Bodies {
     std::vector<BodyId> id;
     std::vector<Vec> position, velocity, angular_velocity;
     std::vector<Vec> force, moment;                  // total, after the force pass
-    std::vector<Vec> applied_force, applied_moment;  // user loads
+    // user loads: empty until a load is applied (most scenes apply none; 48 B
+    // per ball, and as much again in the last-good snapshot)
+    std::vector<Vec> applied_force, applied_moment;
     // a change of mass or inertia after World::prepare() needs
     // World::mark_dirty(): the kicks use 1/m and 1/I cached there
     std::vector<double> radius, mass, inertia, local_damping;
@@ -44,6 +46,8 @@ struct Bodies {
     static double inertia_of(int dim, double radius, double mass);
 
     BodyId add(const BallSpec& s);
+    bool has_applied_loads() const { return !applied_force.empty(); }
+    void enable_applied_loads();  // zero loads for every body, from here on kept
     // DOFs that can never move in this dimension (2D: z, rx, ry).
     std::uint8_t implicit_fixity() const { return dim == 2 ? (dof_z | dof_rx | dof_ry) : 0; }
 };

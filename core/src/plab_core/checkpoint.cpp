@@ -128,8 +128,10 @@ void load_bodies(Bodies& b, CheckpointReader& in) {
     b.fixity = in.column<std::uint8_t>();
     b.next_id = in.u64();
     const std::size_t n = b.id.size();
+    if (b.applied_force.size() != b.applied_moment.size() || (b.has_applied_loads() && b.applied_force.size() != n))
+        in.fail("applied loads for " + std::to_string(b.applied_force.size()) + " of " + std::to_string(n) + " bodies");
     for (std::size_t len : {b.position.size(), b.velocity.size(), b.angular_velocity.size(), b.force.size(),
-                            b.moment.size(), b.applied_force.size(), b.applied_moment.size(), b.radius.size(),
+                            b.moment.size(), b.radius.size(),
                             b.mass.size(), b.inertia.size(), b.local_damping.size(), b.viscous_damping.size(),
                             b.group.size(), b.fixity.size()})
         if (len != n) in.fail("body columns of different lengths (" + std::to_string(len) + " vs " + std::to_string(n) + ")");

@@ -62,6 +62,16 @@ void ContactSet::resize_columns(std::size_t n, int n_acc) {
         for (auto& a : *acc) fill(a, n, 0.0);
 }
 
+void ContactSet::release_columns() {
+    for (auto* v : {&active, &interior}) std::vector<std::uint8_t>().swap(*v);
+    for (auto* v : {&normal, &gap, &distance, &rel_velocity, &rel_angular_velocity, &point, &radius1, &radius2, &mass1,
+                    &mass2, &eff_mass, &eff_radius, &force, &moment1, &moment2, &strain, &slip, &dashpot, &k_t, &k_r,
+                    &dt_limit, &break_energy, &batch_energy})
+        std::vector<double>().swap(*v);
+    for (auto* acc : {&acc1, &acc2})
+        for (auto& a : *acc) std::vector<double>().swap(a);
+}
+
 namespace {
 
 // Candidate cut-off between two bodies for an instance, centre to centre.
@@ -171,7 +181,8 @@ void World::keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
 
 // Replace a set's rows by new candidate pairs, carrying history by key
 // (a pair listed twice — a bond that is also a candidate — is kept once).
-void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) {
+void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs,
+                          bool lean) {
     if (!set.with_wall)
         for (auto& pr : pairs)
             if (bodies.id[pr[0]] > bodies.id[pr[1]]) std::swap(pr[0], pr[1]);  // end 1 has the lower id
@@ -179,9 +190,9 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     const std::size_t n = pairs.size();
     const int stride = inst.stride;
     RebuildScratch& t = rebuild_scratch_;  // reused: a rebuild allocates nothing once the lists stop growing
-    t.history.resize(n * stride);
-    t.e1.resize(n);
-    t.e2.resize(n);
+    fill(t.history, n * stride, 0.0);  // (fill: a block too small goes before the new one comes)
+    fill(t.e1, n, 0);
+    fill(t.e2, n, 0);
     // the old rows are sorted by the same keys: one merge finds the survivors
     std::size_t old = 0;
     for (std::size_t r = 0; r < n; ++r) {
@@ -199,6 +210,12 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     set.end1.swap(t.e1);
     set.end2.swap(t.e2);
     set.history.swap(t.history);
+    if (lean || n > kLeanRebuildRows) {  // the old rows and the pairs go before the columns come
+        t.e1 = {};
+        t.e2 = {};
+        t.history = {};
+        pairs = {};
+    }
     lay_out_columns(inst, set);
     fill_pair_constants(set);
 }
@@ -258,6 +275,12 @@ void World::fill_pair_constants(ContactSet& set) const {
 }
 
 void World::rebuild() {
+    std::size_t rows = 0;
+    for (const auto& inst : instances_) rows += inst->balls.size() + inst->walls.size();
+    const bool lean = rows > kLeanRebuildRows;
+    if (lean)  // install_pairs() lays the columns out anew, zeroed: nothing in them is carried over
+        for (auto& inst : instances_)
+            for (ContactSet* s : {&inst->balls, &inst->walls}) s->release_columns();
     auto& ball_pairs = rebuild_scratch_.ball_pairs;  // cleared, not freed: the next rebuild fills as many
     auto& wall_pairs = rebuild_scratch_.wall_pairs;
     ball_pairs.resize(instances_.size());
@@ -269,8 +292,8 @@ void World::rebuild() {
     for (std::size_t m = 0; m < instances_.size(); ++m) {
         keep_bonded_pairs(*instances_[m], instances_[m]->balls, ball_pairs[m]);
         keep_bonded_pairs(*instances_[m], instances_[m]->walls, wall_pairs[m]);
-        install_pairs(*instances_[m], instances_[m]->balls, ball_pairs[m]);
-        install_pairs(*instances_[m], instances_[m]->walls, wall_pairs[m]);
+        install_pairs(*instances_[m], instances_[m]->balls, ball_pairs[m], lean);
+        install_pairs(*instances_[m], instances_[m]->walls, wall_pairs[m], lean);
     }
     position_at_build_ = bodies.position;
     wall_motion_since_build_ = 0;

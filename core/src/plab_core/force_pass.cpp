@@ -412,9 +412,16 @@ void World::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
 void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
     Vec* force = bodies.force.data();
     Vec* moment = bodies.moment.data();
-    for (std::size_t i = i0; i < i1; ++i) {
-        force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
-        moment[i] = bodies.applied_moment[i];
+    if (bodies.has_applied_loads()) {
+        for (std::size_t i = i0; i < i1; ++i) {
+            force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
+            moment[i] = bodies.applied_moment[i];
+        }
+    } else {
+        for (std::size_t i = i0; i < i1; ++i) {
+            force[i] = bodies.mass[i] * gravity;
+            moment[i] = Vec::Zero();
+        }
     }
     for (const Chunk& ch : chunks_) {
         const double* p = partial_fm_.data() + ch.offset;

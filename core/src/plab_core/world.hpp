@@ -54,6 +54,7 @@ struct ContactSet {
 
     std::size_t size() const { return end1.size(); }
     void resize_columns(std::size_t n, int n_accumulated);
+    void release_columns();  // every per-row column but the ends and history, freed
 
     // The owning model's io and flags (abi.h; set once, World::add_instance).
     // A packed set does not keep the output columns its model never writes:
@@ -235,7 +236,9 @@ public:
     std::uint64_t state_hash() const;       // FNV-1a over positions, velocities, spins
     std::array<double, ph_count> phase_seconds{};
     std::uint64_t rebuilds = 0;
-    void mark_dirty() { need_rebuild_ = true; prepared_ = false; nominal_valid_ = false; }
+    // After a change of the bodies, walls or models: lists, caches and the
+    // last good state are renewed (a snapshot never spans a change).
+    void mark_dirty() { need_rebuild_ = true; prepared_ = false; nominal_valid_ = false; snapshot_.valid = false; }
 
 private:
     friend struct WorldCheckpoint;  // checkpoint.cpp saves and restores the private state below
@@ -362,7 +365,7 @@ private:
     void rebuild();
     void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
-    void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs);
+    void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs, bool lean);
     void sort_by_keys(const ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) const;
     // buffers of rebuild() and install_pairs(), kept between rebuilds
     struct RebuildScratch {
@@ -371,6 +374,11 @@ private:
         std::vector<double> history;
     };
     RebuildScratch rebuild_scratch_;
+    // Above this many candidate rows a rebuild keeps nothing twice: the
+    // columns go before the new lists are built, the scratch after (a
+    // million balls rebuild rarely, and the memory matters; small worlds
+    // rebuild often and keep their buffers, so the cycle allocates nothing).
+    static constexpr std::size_t kLeanRebuildRows = std::size_t(1) << 20;
     void build_entries();
     void fill_pair_constants(ContactSet& set) const;
     // whether the ball–ball rows of a model go to it packed (force_sweep): no
