@@ -226,21 +226,23 @@ void World::step() {
 
 namespace {
 
-// The bodies' state that a step or a command may change without
-// mark_dirty(): motion, fixity, damping and loads. Ids, radii, masses,
-// inertias and groups change only with mark_dirty(), which drops the
-// snapshot, so the one kept shares them with the world; the force and
-// moment totals follow from the state (restore_snapshot() re-evaluates
-// them). 84 B per ball less than a copy of all.
-void copy_state(const Bodies& from, Bodies& to) {
-    to.position = from.position;
-    to.velocity = from.velocity;
-    to.angular_velocity = from.angular_velocity;
-    to.applied_force = from.applied_force;
-    to.applied_moment = from.applied_moment;
-    to.local_damping = from.local_damping;
-    to.viscous_damping = from.viscous_damping;
-    to.fixity = from.fixity;
+// The rows of a set whose history differs from the model's defaults: a
+// row at its defaults is what the rebuild makes of a new pair.
+void keep_rows_with_history(const ModelInstance& inst, const ContactSet& c, std::vector<std::int32_t>& end1,
+                            std::vector<std::int32_t>& end2, std::vector<double>& history) {
+    end1.clear();
+    end2.clear();
+    history.clear();
+    const int stride = inst.stride;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+        const double* row = c.history.data() + k * stride;
+        bool fresh = true;
+        for (int h = 0; h < stride; ++h) fresh &= row[h] == inst.desc->history[h].default_value;
+        if (fresh) continue;
+        end1.push_back(c.end1[k]);
+        end2.push_back(c.end2[k]);
+        history.insert(history.end(), row, row + stride);
+    }
 }
 
 } // namespace
@@ -248,7 +250,12 @@ void copy_state(const Bodies& from, Bodies& to) {
 void World::take_snapshot() {
     if (!prepared_) prepare();
     Snapshot& s = snapshot_;
-    copy_state(bodies, s.bodies);
+    // only the motion: everything else about a body changes with
+    // mark_dirty() alone, which drops the snapshot (it never spans a change),
+    // and the force and moment totals follow from the state
+    s.position = bodies.position;
+    s.velocity = bodies.velocity;
+    s.angular_velocity = bodies.angular_velocity;
     s.walls = walls;
     s.fields = fields_;
     s.energies = energies;
@@ -262,7 +269,7 @@ void World::take_snapshot() {
     for (const auto& inst : instances_)
         for (const ContactSet* c : {&inst->balls, &inst->walls}) {
             SetState& st = s.sets[k++];
-            st.end1 = c->end1; st.end2 = c->end2; st.history = c->history;
+            keep_rows_with_history(*inst, *c, st.end1, st.end2, st.history);
         }
     s.valid = true;
 }
@@ -273,7 +280,9 @@ void World::take_snapshot() {
 // step see the forces of this state.
 void World::restore_snapshot() {
     const Snapshot& s = snapshot_;
-    copy_state(s.bodies, bodies);
+    bodies.position = s.position;
+    bodies.velocity = s.velocity;
+    bodies.angular_velocity = s.angular_velocity;
     walls = s.walls;
     fields_ = s.fields;
     energies = s.energies;

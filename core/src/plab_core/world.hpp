@@ -321,14 +321,16 @@ private:
     std::vector<std::int32_t> pc_end1_, pc_end2_;
     std::vector<std::uint8_t> pc_wall_;
 
-    // the kept copy: contact rows by key and history; geometry is recomputed
+    // the kept copy: the contact rows whose history is not the model's
+    // default, by ends; the others, and all geometry, come back with the
+    // rebuild of restore_snapshot()
     struct SetState {
         std::vector<std::int32_t> end1, end2;
         std::vector<double> history;
     };
     struct Snapshot {
         bool valid = false;
-        Bodies bodies;
+        std::vector<Vec> position, velocity, angular_velocity;
         Walls walls;
         std::vector<std::vector<double>> fields;
         Energies energies;
