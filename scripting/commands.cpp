@@ -364,7 +364,6 @@ void Simulation::after_step() {
         write_png_snapshot();
         next_png_time_ += png_interval_;
     }
-    keep_last_good();
     if (checkpoint_every_ > 0 && !out_dir_.empty() && w.time + 1e-12 >= next_checkpoint_time_) {
         save_checkpoint(checkpoint_path());
         while (next_checkpoint_time_ <= w.time + 1e-12) next_checkpoint_time_ += checkpoint_every_;
@@ -483,7 +482,6 @@ void Simulation::run() {
         next_png_time_ = png_interval_;
     }
     try {
-        keep_last_good();
         while (next_command_ < commands_.size()) {
             if (!run_command(commands_[next_command_])) break;  // stopped mid-command by a signal
             ++next_command_;

@@ -95,33 +95,40 @@ void Simulation::set_checkpoint_every(double seconds) {
     next_checkpoint_time_ = world_->time + seconds;
 }
 
-void Simulation::save_checkpoint(const std::string& path) const { write_file_atomically(path, checkpoint_bytes()); }
+void Simulation::save_checkpoint(const std::string& path) const {
+    CheckpointWriter out = CheckpointWriter::to_file(path);
+    write_plugins_and_scene(out);
+    WorldCheckpoint::save(*world_, out);
+    write_run_state(out);
+    out.commit();
+}
 
 std::string Simulation::last_good_path() const { return (fs::path(out_dir_) / "last_good.plab").string(); }
 
-// Every `snapshot_interval` steps the run keeps its checkpoint in memory, at
-// the state the world's own last-good snapshot holds; when the run goes
-// unstable it is written out, to restart from with a smaller timestep.
+// The run's last good state is the world's own snapshot (World::step()
+// restores it when a step fails); beside it the run keeps, at the instant
+// the world takes it, the small part of a checkpoint that is its own
+// (commands' progress, outputs). When the run goes unstable the checkpoint
+// is written from the restored world and that part: no second copy of the
+// world is held in memory.
 void Simulation::keep_last_good() {
-    const World& w = *world_;
-    if (out_dir_.empty() || w.snapshot_interval == 0) return;
-    if (last_good_.empty() || w.step_count % w.snapshot_interval == 0) {
-        // rewritten in place: only one copy is held, and its pages stay mapped
-        std::string buffer = std::move(last_good_);
-        last_good_.clear();
-        buffer.reserve(buffer.size() + buffer.size() / 8);
-        last_good_ = checkpoint_bytes(std::move(buffer));
-    }
+    if (out_dir_.empty() || world_->snapshot_interval == 0) return;
+    CheckpointWriter out{CheckpointWriter::Headless{}};
+    write_run_state(out);
+    last_good_run_state_ = out.take();
 }
 
 std::string Simulation::write_last_good() const {
-    if (last_good_.empty()) return "";
-    write_file_atomically(last_good_path(), last_good_);
+    if (!world_->at_last_good() || last_good_run_state_.empty()) return "";
+    CheckpointWriter out = CheckpointWriter::to_file(last_good_path());
+    write_plugins_and_scene(out);
+    WorldCheckpoint::save(*world_, out);
+    out.append(last_good_run_state_);
+    out.commit();
     return last_good_path();
 }
 
-std::string Simulation::checkpoint_bytes(std::string buffer) const {
-    CheckpointWriter out(std::move(buffer));
+void Simulation::write_plugins_and_scene(CheckpointWriter& out) const {
     const auto used = plugins_used(scene_, scene_dir_, *host_, *world_);
     out.section("plugins");
     out.u64(used.size());
@@ -135,9 +142,9 @@ std::string Simulation::checkpoint_bytes(std::string buffer) const {
     out.str(scene_dir_);
     out.str(out_dir_);
     out.str(scene_.dump());
+}
 
-    WorldCheckpoint::save(*world_, out);
-
+void Simulation::write_run_state(CheckpointWriter& out) const {
     out.section("commands");
     out.u64(commands_.size());
     out.u64(next_command_);
@@ -163,7 +170,6 @@ std::string Simulation::checkpoint_bytes(std::string buffer) const {
     out.f64(checkpoint_every_);
     out.f64(next_checkpoint_time_);
     out.section("end");
-    return out.take();
 }
 
 std::unique_ptr<Simulation> Simulation::restart(const std::string& path, const std::vector<std::string>& sets,

@@ -41,6 +41,7 @@ Simulation::Simulation(const json& scene, const std::string& scene_dir, std::sha
     : scene_(scene), scene_dir_(scene_dir), host_(host ? std::move(host) : std::make_shared<PluginHost>()),
       materials_(std::make_unique<Materials>()) {
     load(Node(scene_, "scene"));
+    world_->on_snapshot = [this] { keep_last_good(); };  // (a Simulation is never moved)
 }
 
 Simulation::~Simulation() = default;

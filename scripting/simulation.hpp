@@ -17,6 +17,7 @@
 namespace plab {
 
 class Materials;
+class CheckpointWriter;
 
 // Applies "a.b.0.c=value" to a scene: the value is read as JSON when it
 // parses (numbers, arrays, true/false), else as a string. The path must
@@ -136,11 +137,11 @@ private:
     double checkpoint_every_ = 0, next_checkpoint_time_ = 0;
     bool resumed_ = false, interrupted_ = false;
     bool run_command(const Command& c);  // false: stopped by a signal before it completed
-    std::string last_good_;  // checkpoint bytes of the last good state (runs with outputs)
-    // written into `buffer`'s memory (keep_last_good() hands it the last
-    // copy, reserved an eighth larger): a buffer grown by doubling would
-    // need up to three times the checkpoint at its peak
-    std::string checkpoint_bytes(std::string buffer = {}) const;
+    // the run's own sections of a checkpoint (commands, outputs) at the
+    // world's last-good snapshot (runs with outputs; World::on_snapshot)
+    std::string last_good_run_state_;
+    void write_plugins_and_scene(CheckpointWriter& out) const;
+    void write_run_state(CheckpointWriter& out) const;
     std::string last_good_path() const;
     void keep_last_good();
     std::string write_last_good() const;  // its path, or "" when none is kept

@@ -14,10 +14,10 @@ import sys
 D, RHO, SPACING, JIT_X, JIT_V = 0.01, 2500.0, 0.011, 0.00025, 0.05
 
 
-def lattice(dim):
+def lattice(dim, lateral=20):
     r = D / 2
     if dim == 3:
-        counts, lo = (20, 20, 25), (0.0005 + r,) * 3
+        counts, lo = (lateral, lateral, 25), (0.0005 + r,) * 3
     else:
         counts, lo = (100, 100), (0.0005 + r,) * 2
     pts = []
@@ -33,10 +33,12 @@ def lattice(dim):
     return pts
 
 
-def write(dim, path, seed=1, density=RHO):
+def write(dim, path, seed=1, density=RHO, lateral=20):
+    """lateral: balls along x and y (3D); the box side grows with it (0.22 m for 20)."""
     rnd = random.Random(seed)
-    pts = lattice(dim)
-    hi = (0.22, 0.22, 0.40) if dim == 3 else (1.1, 2.0, 0.0)
+    pts = lattice(dim, lateral)
+    side = lateral * SPACING
+    hi = (side, side, 0.40) if dim == 3 else (1.1, 2.0, 0.0)
     with open(path, "w") as f:
         f.write(f"granular settling, {dim}D, {len(pts)} balls\n\n{len(pts)} atoms\n1 atom types\n\n")
         f.write(f"0 {hi[0]} xlo xhi\n0 {hi[1]} ylo yhi\n")

@@ -88,6 +88,25 @@ void CheckpointReader::section(const std::string& name) {
     section_ = name;
 }
 
+CheckpointWriter CheckpointWriter::to_file(const std::string& path) {
+    const fs::path p(path);
+    if (p.has_parent_path()) fs::create_directories(p.parent_path());
+    std::string header = CheckpointWriter().take();
+    CheckpointWriter out{Headless{}};
+    out.path_ = path;
+    out.file_ = std::make_unique<std::ofstream>(path + ".tmp", std::ios::binary);
+    if (!*out.file_) throw CheckpointError("cannot write checkpoint " + path + ".tmp");
+    out.append(header);
+    return out;
+}
+
+void CheckpointWriter::commit() {
+    file_->flush();
+    if (!*file_) throw CheckpointError("cannot write checkpoint " + path_ + ".tmp");
+    file_.reset();
+    fs::rename(path_ + ".tmp", path_);
+}
+
 void write_file_atomically(const std::string& path, const std::string& bytes) {
     const fs::path p(path);
     if (p.has_parent_path()) fs::create_directories(p.parent_path());

@@ -13,6 +13,8 @@
 #include "world.hpp"
 
 #include <cstdint>
+#include <fstream>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -38,6 +40,15 @@ public:
     // writes the header; into `buffer`'s memory when given one (a checkpoint
     // kept in memory is rewritten in place, without faulting new pages in)
     explicit CheckpointWriter(std::string buffer = {});
+    // no header: sections to be appended to another writer's (append())
+    struct Headless {};
+    explicit CheckpointWriter(Headless) {}
+    // Streams the checkpoint to `path`.tmp instead of holding it in memory
+    // (a million-ball checkpoint is hundreds of MB); commit() renames it to
+    // `path`, so a run killed while writing leaves the previous file.
+    static CheckpointWriter to_file(const std::string& path);
+    void commit();
+    void append(const std::string& bytes) { raw(bytes.data(), bytes.size()); }
     void section(const std::string& name) { str(name); }
     void u8(std::uint8_t v) { raw(&v, 1); }
     void u32(std::uint32_t v) { raw(&v, sizeof v); }
@@ -57,8 +68,13 @@ public:
     std::string take() { return std::move(data_); }  // the bytes, without a copy; the writer is spent
 
 private:
-    void raw(const void* p, std::size_t n) { data_.append(static_cast<const char*>(p), n); }
+    void raw(const void* p, std::size_t n) {
+        if (file_) file_->write(static_cast<const char*>(p), std::streamsize(n));
+        else data_.append(static_cast<const char*>(p), n);
+    }
     std::string data_;
+    std::unique_ptr<std::ofstream> file_;
+    std::string path_;
 };
 
 class CheckpointReader {

@@ -368,7 +368,11 @@ void World::list_chunk_bodies(Chunk& ch) {
 // Chunks of the deterministic reduction (world.hpp): about eight batches
 // each, so that two threads share a set evenly, at most 64 per set.
 void World::build_chunks() {
-    constexpr std::size_t batches_per_chunk = 8, max_chunks = 64;
+    // At most 16 chunks per set: enough to share among the threads, and a
+    // chunk's partial array spans its bodies plus the reach of its rows'
+    // second ends (a layer of the packing), so more chunks cost memory:
+    // 64 took ~170 B per ball on a settled pile of 1e5 balls.
+    constexpr std::size_t batches_per_chunk = 8, max_chunks = 16;
     chunks_.clear();
     set_chunks_.assign(1, 0);
     chunk_bodies_.clear();
@@ -395,6 +399,7 @@ void World::build_chunks() {
         }
         set_chunks_.push_back(std::uint32_t(chunks_.size()));
     }
+    if (offset > partial_fm_.capacity()) std::vector<double>().swap(partial_fm_);  // no two copies at the peak
     partial_fm_.assign(offset, 0.0);
     // the columns were just made or loaded: nothing is known to be uniform,
     // and any row may hold history

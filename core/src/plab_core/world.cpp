@@ -210,6 +210,7 @@ void World::prepare() {
 // kept at whole steps so outputs, energies and restarts are synchronised.
 // Models see the half-step velocity, as in PFC.
 void World::step() {
+    at_last_good_ = false;
     if (snapshot_interval > 0 && (step_count % snapshot_interval == 0 || !snapshot_.valid)) take_snapshot();
     try {
         advance();
@@ -217,6 +218,7 @@ void World::step() {
         if (!snapshot_.valid) throw;
         const std::uint64_t failed_at = step_count;
         restore_snapshot();
+        at_last_good_ = true;
         throw RunError(std::string(e.what()) + "; the world is back at its last good state, step " +
                        std::to_string(step_count) + " (t = " + std::to_string(time) + " s), " +
                        std::to_string(failed_at - step_count) + " steps before the failure",
@@ -272,6 +274,7 @@ void World::take_snapshot() {
             keep_rows_with_history(*inst, *c, st.end1, st.end2, st.history);
         }
     s.valid = true;
+    if (on_snapshot) on_snapshot();
 }
 
 // Contact rows come back with their history; the world re-detects and

@@ -12,6 +12,7 @@
 #include "walls.hpp"
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -205,6 +206,13 @@ public:
     // state; a step that goes unstable restores it before the RunError
     // leaves step(), so outputs and the caller see the last good state.
     std::uint64_t snapshot_interval = 100;
+    // Called whenever the world has taken its last-good snapshot: whoever
+    // keeps state beside the world (a Simulation's outputs) keeps theirs
+    // for the same instant.
+    std::function<void()> on_snapshot;
+    // Whether the world is back at its last-good snapshot after a step
+    // failed (until the next step).
+    bool at_last_good() const { return at_last_good_; }
 
     // ---- the instability detector (stability.cpp) ----
     StabilityLimits stability;
@@ -339,6 +347,7 @@ private:
         std::size_t bond_breaks = 0;
         std::vector<SetState> sets;  // per instance: balls, walls
     } snapshot_;
+    bool at_last_good_ = false;
     StableStep snapshot_stable_;  // stable step at the last good state, for the likely cause
     // the energy balance and domain the detector compares with (stability.cpp)
     struct StabilityBaseline {
