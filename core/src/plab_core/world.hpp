@@ -366,13 +366,14 @@ private:
     double effective_skin() const;
     void resize_fields();
     void rebuild();
-    void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
+    void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out);
     void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs, bool lean);
     void sort_by_keys(const ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) const;
     // buffers of rebuild() and install_pairs(), kept between rebuilds
     struct RebuildScratch {
         std::vector<std::vector<std::array<std::int32_t, 2>>> ball_pairs, wall_pairs;
+        std::vector<std::vector<std::vector<std::array<std::int32_t, 2>>>> block_pairs;  // build_ball_pairs()
         std::vector<std::int32_t> e1, e2;
         std::vector<double> history;
     };
