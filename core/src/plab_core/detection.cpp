@@ -30,8 +30,9 @@ void fill(std::vector<T>& v, std::size_t n, T x) {
 
 bool ContactSet::keeps(std::uint32_t io_bit) const {
     if (!packed) return true;
-    if (model_flags & PLAB_MODEL_FORCE_AT_CENTRES) return io_bit == PLAB_IO_DT_LIMIT;  // no moment, no stiffness
-    return io_bit == 0 || !(model_io & PLAB_IO_DECLARED) || (model_io & io_bit);
+    const bool written = !(model_io & PLAB_IO_DECLARED) || (model_io & io_bit);
+    if (model_flags & PLAB_MODEL_FORCE_AT_CENTRES) return io_bit == PLAB_IO_DT_LIMIT && written;  // no moment, no stiffness
+    return io_bit == 0 || written;
 }
 
 void ContactSet::resize_columns(std::size_t n, int n_acc) {
