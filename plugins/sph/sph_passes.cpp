@@ -359,7 +359,8 @@ struct SphDensitySummation {
     void run(const plab_pass_view& v) {
         const plab::sph::Kernel W{kind_, int(v.dim), h_};
         const double w0 = W.value(0);
-        const std::size_t n_chunks = (std::size_t(v.contact_count) + kChunkContacts - 1) / kChunkContacts;
+        chunk_contacts_ = std::max(kMinChunkContacts, (std::size_t(v.contact_count) + kMaxChunks - 1) / kMaxChunks);
+        const std::size_t n_chunks = (std::size_t(v.contact_count) + chunk_contacts_ - 1) / chunk_contacts_;
         chunks_.resize(n_chunks);
         // the chunks' body ranges, then their places in the partial sums
 #pragma omp parallel for schedule(static) if (n_chunks > 1)
@@ -386,11 +387,14 @@ struct SphDensitySummation {
     }
 
 private:
-    // The pairs are summed in chunks of a fixed number of contacts, each
-    // into its own partial sums over the bodies it touches, and each body
-    // adds its chunks' sums in chunk order: the same bits for any thread
-    // count (the chunks depend on the contact count only).
-    static constexpr std::size_t kChunkContacts = 16384;
+    // The pairs are summed in chunks of contacts, each into its own partial
+    // sums over the bodies it touches, and each body adds its chunks' sums
+    // in chunk order: the same bits for any thread count (the chunks depend
+    // on the contact count only). At most kMaxChunks chunks: a chunk's
+    // bodies may span them all once the fluid has mixed, and the partial
+    // sums must stay a few times the density field, not one per 16 384 pairs.
+    static constexpr std::size_t kMinChunkContacts = 16384, kMaxChunks = 16;
+    std::size_t chunk_contacts_ = kMinChunkContacts;
     struct Chunk {
         std::int64_t lo = 0, hi = -1;  // bodies touched: [lo, hi]
         std::size_t offset = 0;        // the sums of body lo at partial_[stride() * offset]
@@ -398,7 +402,7 @@ private:
     std::size_t stride() const { return normalised_ ? 2 : 1; }  // mass sum, then volume sum
 
     void find_body_range(const plab_pass_view& v, std::size_t c) {
-        const std::size_t k0 = c * kChunkContacts, k1 = std::min<std::size_t>(v.contact_count, k0 + kChunkContacts);
+        const std::size_t k0 = c * chunk_contacts_, k1 = std::min<std::size_t>(v.contact_count, k0 + chunk_contacts_);
         std::int64_t lo = v.body_count, hi = -1;
         for (std::size_t k = k0; k < k1; ++k) {
             if (v.contact_end2_is_wall[k]) continue;
@@ -421,7 +425,7 @@ private:
         // W.value(r) with its normalisation taken once, not per pair (same arithmetic)
         const double norm = plab::sph::normalisation(kind_, int(v.dim), h_);
         const double* rho = v.fields[density];
-        const std::size_t k0 = c * kChunkContacts, k1 = std::min<std::size_t>(v.contact_count, k0 + kChunkContacts);
+        const std::size_t k0 = c * chunk_contacts_, k1 = std::min<std::size_t>(v.contact_count, k0 + chunk_contacts_);
         for (std::size_t k = k0; k < k1; ++k) {
             if (v.contact_end2_is_wall[k]) continue;
             const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
