@@ -359,25 +359,19 @@ struct SphDensitySummation {
     void run(const plab_pass_view& v) {
         const plab::sph::Kernel W{kind_, int(v.dim), h_};
         const double w0 = W.value(0);
+        const std::size_t n = v.body_count, width = stride() * n;
         chunk_contacts_ = std::max(kMinChunkContacts, (std::size_t(v.contact_count) + kMaxChunks - 1) / kMaxChunks);
         const std::size_t n_chunks = (std::size_t(v.contact_count) + chunk_contacts_ - 1) / chunk_contacts_;
-        chunks_.resize(n_chunks);
-        // the chunks' body ranges, then their places in the partial sums
-#pragma omp parallel for schedule(static) if (n_chunks > 1)
-        for (std::size_t c = 0; c < n_chunks; ++c) find_body_range(v, c);
-        std::size_t slots = 0;
-        for (Chunk& ch : chunks_) { ch.offset = slots; slots += ch.hi >= ch.lo ? std::size_t(ch.hi - ch.lo + 1) : 0; }
-        partial_.resize(stride() * slots);  // mass (and volume) sums per body of each chunk
+        partial_.resize(n_chunks * width);
 #pragma omp parallel for schedule(dynamic) if (n_chunks > 1)
-        for (std::size_t c = 0; c < n_chunks; ++c) sum_chunk(v, W, c);
+        for (std::size_t c = 0; c < n_chunks; ++c) sum_chunk(v, W, c, partial_.data() + c * width);
         double* rho = v.fields[density];
-#pragma omp parallel for schedule(static) if (v.body_count >= 4096)
-        for (std::int64_t i = 0; i < std::int64_t(v.body_count); ++i) {
+#pragma omp parallel for schedule(static) if (n >= 4096)
+        for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
             if (v.group[i] == boundary_) continue;
             double mass_sum = 0, volume_sum = 0;  // the chunks' sums in chunk order
-            for (const Chunk& ch : chunks_) {
-                if (i < ch.lo || i > ch.hi) continue;
-                const double* sum = partial_.data() + stride() * (ch.offset + std::size_t(i - ch.lo));
+            for (std::size_t c = 0; c < n_chunks; ++c) {
+                const double* sum = partial_.data() + c * width + stride() * std::size_t(i);
                 mass_sum += sum[0];
                 if (normalised_) volume_sum += sum[1];
             }
@@ -388,39 +382,20 @@ struct SphDensitySummation {
 
 private:
     // The pairs are summed in chunks of contacts, each into its own partial
-    // sums over the bodies it touches, and each body adds its chunks' sums
-    // in chunk order: the same bits for any thread count (the chunks depend
-    // on the contact count only). At most kMaxChunks chunks: a chunk's
-    // bodies may span them all once the fluid has mixed, and the partial
-    // sums must stay a few times the density field, not one per 16 384 pairs.
+    // sums over all bodies, and each body adds its chunks' sums in chunk
+    // order: the same bits for any thread count (the chunks depend on the
+    // contact count only). At most kMaxChunks chunks, so the partial sums
+    // take at most 16 (32 normalised) doubles per body.
     static constexpr std::size_t kMinChunkContacts = 16384, kMaxChunks = 16;
     std::size_t chunk_contacts_ = kMinChunkContacts;
-    struct Chunk {
-        std::int64_t lo = 0, hi = -1;  // bodies touched: [lo, hi]
-        std::size_t offset = 0;        // the sums of body lo at partial_[stride() * offset]
-    };
     std::size_t stride() const { return normalised_ ? 2 : 1; }  // mass sum, then volume sum
 
-    void find_body_range(const plab_pass_view& v, std::size_t c) {
-        const std::size_t k0 = c * chunk_contacts_, k1 = std::min<std::size_t>(v.contact_count, k0 + chunk_contacts_);
-        std::int64_t lo = v.body_count, hi = -1;
-        for (std::size_t k = k0; k < k1; ++k) {
-            if (v.contact_end2_is_wall[k]) continue;
-            lo = std::min<std::int64_t>(lo, std::min(v.contact_end1[k], v.contact_end2[k]));
-            hi = std::max<std::int64_t>(hi, std::max(v.contact_end1[k], v.contact_end2[k]));
-        }
-        chunks_[c].lo = lo;
-        chunks_[c].hi = hi;
-    }
-
     // eqs. 8–9 over chunk c's pairs within the support: m_j W_ij (and
-    // (m_j/rho_j) W_ij) to end i, and the same with i and j swapped to end j
-    void sum_chunk(const plab_pass_view& v, const plab::sph::Kernel& W, std::size_t c) {
-        const Chunk& ch = chunks_[c];
-        if (ch.hi < ch.lo) return;
+    // (m_j/rho_j) W_ij) to end i, and the same with i and j swapped to end j;
+    // body i's sums at sum[stride() i]
+    void sum_chunk(const plab_pass_view& v, const plab::sph::Kernel& W, std::size_t c, double* sum) const {
         const std::size_t stride = this->stride();
-        double* sum = partial_.data() + stride * ch.offset;  // body i at sum[stride (i - lo)]
-        std::fill_n(sum, stride * std::size_t(ch.hi - ch.lo + 1), 0.0);
+        std::fill_n(sum, stride * v.body_count, 0.0);
         const double support2 = W.support() * W.support();
         // W.value(r) with its normalisation taken once, not per pair (same arithmetic)
         const double norm = plab::sph::normalisation(kind_, int(v.dim), h_);
@@ -435,8 +410,8 @@ private:
             const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             if (r2 >= support2) continue;
             const double w = norm * plab::sph::detail::shape(kind_, std::sqrt(r2) / h_);
-            double* sum_i = sum + stride * std::size_t(i - ch.lo);
-            double* sum_j = sum + stride * std::size_t(j - ch.lo);
+            double* sum_i = sum + stride * std::size_t(i);
+            double* sum_j = sum + stride * std::size_t(j);
             sum_i[0] += v.mass[j] * w;
             sum_j[0] += v.mass[i] * w;
             if (!normalised_) continue;
@@ -449,7 +424,6 @@ private:
     double h_;
     int boundary_;
     bool normalised_;
-    std::vector<Chunk> chunks_;
     std::vector<double> partial_;
 };
 
