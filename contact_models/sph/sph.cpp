@@ -119,7 +119,7 @@ struct Sph {
         const double r = c.distance();
         if (r >= support_) return;
         const Vec3 n = c.normal();
-        const double dW = derivative_scale_[c.dim() == 3] * plab::sph::detail::shape_derivative(kind_, r * inv_h_);  // <= 0
+        const double dW = derivative_scale_[c.dim() == 3] * plab::sph::detail::shape_derivative(kind_, r / h_);  // <= 0
         const double m1 = c.mass1(), m2 = c.mass2();
         const double v_n = plab::dot(v_rel, n);  // < 0 while approaching
 
@@ -128,14 +128,13 @@ struct Sph {
             return;
         }
         const double rho1 = density_or_rest(c.field1(density)), rho2 = density_or_rest(c.field2(density));
-        const Reciprocals inv = reciprocals(rho1, rho2, r);
 
         // eqs. 15–16: m_2 dv_2/dt = -m_1 m_2 (p1/ρ1² + p2/ρ2² + Π + R) ∇_2 W_21
-        const double p_term = c.field1(pressure) * inv.rho1 * inv.rho1 + c.field2(pressure) * inv.rho2 * inv.rho2;
+        const double p_term = c.field1(pressure) / (rho1 * rho1) + c.field2(pressure) / (rho2 * rho2);
         double scalar = p_term + anticlump_term(r, c.dim(), p_term);
         // the viscous terms see a no-slip wall ball at its extrapolated velocity (Adami 2012)
         const Vec3 v_visc = v_rel + wall_correction(c, 2) - wall_correction(c, 1);
-        if (!laminar_) scalar += monaghan(r, plab::dot(v_visc, n), inv);
+        if (!laminar_) scalar += monaghan(r, plab::dot(v_visc, n), rho1, rho2);
         Vec3 f2 = (-m1 * m2 * scalar * dW) * n;
         if (laminar_ && mu_ > 0) {
             // eq. 14 (Morris): Σ m_j (μ_i+μ_j) x_ij·∇_i W_ij / (ρ_i ρ_j (r² + 0.01h²)) v_ij, x_ij·∇_i W_ij = r dW/dr
@@ -181,25 +180,12 @@ private:
         return anticlump_ * std::fabs(p_term) * ratio * ratio * ratio * ratio;
     }
 
-    // The pair force needs 1/ρ1, 1/ρ2 (eq. 15), 1/ρ̄ and 1/(r² + 0.01h²)
-    // (Islam eqs. 8–9): one division gives all four, each the product of
-    // the other factors with the reciprocal of their product.
-    struct Reciprocals {
-        double rho1, rho2, mean_rho, r2_eta2;
-    };
-    Reciprocals reciprocals(double rho1, double rho2, double r) const {
-        const double rho_sum = rho1 + rho2, r2_eta2 = r * r + 0.01 * h_ * h_;
-        const double rho12 = rho1 * rho2, inv_all = 1.0 / (rho12 * rho_sum * r2_eta2);
-        const double inv_rho12 = rho_sum * r2_eta2 * inv_all;  // 1/(ρ1 ρ2)
-        return {rho2 * inv_rho12, rho1 * inv_rho12, 2 * rho12 * r2_eta2 * inv_all, rho12 * rho_sum * inv_all};
-    }
-
     // Islam eqs. 8–9: Π = (-α c̄ μ_ij + β μ_ij²)/ρ̄ while approaching,
     // μ_ij = h v_ij·x_ij/(r² + 0.01h²) with v_ij·x_ij = r (v_rel·n).
-    double monaghan(double r, double v_n, const Reciprocals& inv) const {
+    double monaghan(double r, double v_n, double rho1, double rho2) const {
         if (v_n >= 0) return 0;
-        const double mu_ij = h_ * r * v_n * inv.r2_eta2;
-        return (-alpha_ * c0_ * mu_ij + beta_ * mu_ij * mu_ij) * inv.mean_rho;
+        const double mu_ij = h_ * r * v_n / (r * r + 0.01 * h_ * h_);
+        return (-alpha_ * c0_ * mu_ij + beta_ * mu_ij * mu_ij) / (0.5 * (rho1 + rho2));
     }
 
     KernelKind kind_;
@@ -208,7 +194,6 @@ private:
     double mu_, alpha_, beta_, anticlump_, dp_, delta_;
     // kernel constants, once per instance rather than per pair: dW/dr = scale[dim 3] f'(r/h)
     double support_ = plab::sph::support_factor(kind_) * h_;
-    double inv_h_ = 1 / h_;
     double derivative_scale_[2] = {0, 0};
 };
 
