@@ -145,15 +145,22 @@ void World::build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>
         auto& lists = block_pairs[b];
         lists.resize(out.size());
         for (auto& l : lists) l.clear();
+        // the grid in this thread's locals: push_back() may allocate, after
+        // which anything shared between the threads is read again
+        const std::array<long, 3> d = dims;
+        const Vec origin = lo;
+        const double size = cell;
+        const std::int32_t *first = start.data(), *item = items.data();
+        auto cell_at = [&](const Vec& p, int c) { return std::min(d[c] - 1, long((p[c] - origin[c]) / size)); };
         for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
             const Vec& pi = bodies.position[i];
-            const long cx = cell_of(pi, 0), cy = cell_of(pi, 1), cz = dim == 3 ? cell_of(pi, 2) : 0;
-            for (long z = std::max(0L, cz - zr); z <= std::min(dims[2] - 1, cz + zr); ++z)
-                for (long y = std::max(0L, cy - 1); y <= std::min(dims[1] - 1, cy + 1); ++y)
-                    for (long x = std::max(0L, cx - 1); x <= std::min(dims[0] - 1, cx + 1); ++x) {
-                        const long c = flat(x, y, z);
-                        for (std::int32_t t = start[c]; t < start[c + 1]; ++t) {
-                            const std::int32_t j = items[t];
+            const long cx = cell_at(pi, 0), cy = cell_at(pi, 1), cz = zr ? cell_at(pi, 2) : 0;
+            for (long z = std::max(0L, cz - zr); z <= std::min(d[2] - 1, cz + zr); ++z)
+                for (long y = std::max(0L, cy - 1); y <= std::min(d[1] - 1, cy + 1); ++y)
+                    for (long x = std::max(0L, cx - 1); x <= std::min(d[0] - 1, cx + 1); ++x) {
+                        const long c = (z * d[1] + y) * d[0] + x;
+                        for (std::int32_t t = first[c]; t < first[c + 1]; ++t) {
+                            const std::int32_t j = item[t];
                             if (std::size_t(j) <= i) continue;
                             const int inst = cmat_[bodies.group[i] * ng + bodies.group[j]];
                             if (inst < 0) continue;
