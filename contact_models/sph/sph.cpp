@@ -46,6 +46,9 @@ struct Sph {
     // particles interact through their centres: the host skips spin, moments,
     // stiffness and energies for the ball–ball rows (abi.h, ABI 4)
     static constexpr uint32_t flags = PLAB_MODEL_FORCE_AT_CENTRES;
+    // reads the two masses (not the effective mass or radius, the radii or
+    // the spin) and writes a step limit (abi.h, ABI 5)
+    static constexpr uint32_t io = PLAB_IO_MASSES | PLAB_IO_DT_LIMIT;
 
     enum Prop : int {
         smoothing_length, kernel, rest_density, speed_of_sound, viscosity, mu, alpha, beta,

@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <limits>
@@ -89,14 +90,13 @@ struct SphEos {
         if (!initialised_) initialise(v);
         double* rho = v.fields[density];
         double* p = v.fields[pressure];
-        uint32_t worst = v.body_count;
-        double worst_dev = band_;
-        for (uint32_t i = 0; i < v.body_count; ++i) {
+        bool outside = false;  // some fluid ball outside the band (or NaN)
+#pragma omp parallel for schedule(static) reduction(|| : outside) if (v.body_count >= 4096)
+        for (std::int64_t i = 0; i < std::int64_t(v.body_count); ++i) {
             p[i] = b_ * (std::pow(rho[i] / rho0_, gamma_) - 1.0);
-            const double dev = std::fabs(rho[i] / rho0_ - 1.0);
-            if (!(dev <= worst_dev) && v.group[i] != boundary_) { worst = i; worst_dev = dev; }  // NaN too
+            outside = outside || (!(std::fabs(rho[i] / rho0_ - 1.0) <= band_) && v.group[i] != boundary_);
         }
-        if (worst < v.body_count) throw plab::UnstableState{band_message(v, worst)};
+        if (outside) throw plab::UnstableState{band_message(v, worst_ball(v))};
     }
 
     // Checkpoints carry whether the initial density was set: a restarted
@@ -110,6 +110,19 @@ struct SphEos {
     }
 
 private:
+    // The fluid ball furthest outside the band (a NaN density counts as
+    // outside), searched only once the band is left.
+    uint32_t worst_ball(const plab_pass_view& v) const {
+        const double* rho = v.fields[density];
+        uint32_t worst = 0;
+        double worst_dev = band_;
+        for (uint32_t i = 0; i < v.body_count; ++i) {
+            const double dev = std::fabs(rho[i] / rho0_ - 1.0);
+            if (!(dev <= worst_dev) && v.group[i] != boundary_) { worst = i; worst_dev = dev; }  // NaN too
+        }
+        return worst;
+    }
+
     // Names the ball, the density against the band and the likely cause:
     // a speed of sound too low for the flow (the Mach number sets the
     // density error) or a step above the CFL limit.
@@ -345,13 +358,50 @@ struct SphDensitySummation {
 
     void run(const plab_pass_view& v) {
         const plab::sph::Kernel W{kind_, int(v.dim), h_};
-        const double support2 = W.support() * W.support(), w0 = W.value(0);
+        const double w0 = W.value(0);
+        const std::size_t n = v.body_count, width = stride() * n;
+        chunk_contacts_ = std::max(kMinChunkContacts, (std::size_t(v.contact_count) + kMaxChunks - 1) / kMaxChunks);
+        const std::size_t n_chunks = (std::size_t(v.contact_count) + chunk_contacts_ - 1) / chunk_contacts_;
+        partial_.resize(n_chunks * width);
+#pragma omp parallel for schedule(dynamic) if (n_chunks > 1)
+        for (std::size_t c = 0; c < n_chunks; ++c) sum_chunk(v, W, c, partial_.data() + c * width);
+        double* rho = v.fields[density];
+#pragma omp parallel for schedule(static) if (n >= 4096)
+        for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
+            if (v.group[i] == boundary_) continue;
+            double mass_sum = 0, volume_sum = 0;  // the chunks' sums in chunk order
+            for (std::size_t c = 0; c < n_chunks; ++c) {
+                const double* sum = partial_.data() + c * width + stride() * std::size_t(i);
+                mass_sum += sum[0];
+                if (normalised_) volume_sum += sum[1];
+            }
+            const double mass = mass_sum + v.mass[i] * w0;  // eq. 8 includes j = i
+            rho[i] = normalised_ ? mass / (volume_sum + v.mass[i] / rho[i] * w0) : mass;
+        }
+    }
+
+private:
+    // The pairs are summed in chunks of contacts, each into its own partial
+    // sums over all bodies, and each body adds its chunks' sums in chunk
+    // order: the same bits for any thread count (the chunks depend on the
+    // contact count only). At most kMaxChunks chunks, so the partial sums
+    // take at most 16 (32 normalised) doubles per body.
+    static constexpr std::size_t kMinChunkContacts = 16384, kMaxChunks = 16;
+    std::size_t chunk_contacts_ = kMinChunkContacts;
+    std::size_t stride() const { return normalised_ ? 2 : 1; }  // mass sum, then volume sum
+
+    // eqs. 8–9 over chunk c's pairs within the support: m_j W_ij (and
+    // (m_j/rho_j) W_ij) to end i, and the same with i and j swapped to end j;
+    // body i's sums at sum[stride() i]
+    void sum_chunk(const plab_pass_view& v, const plab::sph::Kernel& W, std::size_t c, double* sum) const {
+        const std::size_t stride = this->stride();
+        std::fill_n(sum, stride * v.body_count, 0.0);
+        const double support2 = W.support() * W.support();
         // W.value(r) with its normalisation taken once, not per pair (same arithmetic)
         const double norm = plab::sph::normalisation(kind_, int(v.dim), h_);
-        double* rho = v.fields[density];
-        mass_sum_.assign(v.body_count, 0.0);
-        volume_sum_.assign(normalised_ ? v.body_count : 0, 0.0);
-        for (uint32_t k = 0; k < v.contact_count; ++k) {
+        const double* rho = v.fields[density];
+        const std::size_t k0 = c * chunk_contacts_, k1 = std::min<std::size_t>(v.contact_count, k0 + chunk_contacts_);
+        for (std::size_t k = k0; k < k1; ++k) {
             if (v.contact_end2_is_wall[k]) continue;
             const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
             const double* xi = v.position + 3 * i;
@@ -360,25 +410,21 @@ struct SphDensitySummation {
             const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             if (r2 >= support2) continue;
             const double w = norm * plab::sph::detail::shape(kind_, std::sqrt(r2) / h_);
-            mass_sum_[i] += v.mass[j] * w;
-            mass_sum_[j] += v.mass[i] * w;
+            double* sum_i = sum + stride * std::size_t(i);
+            double* sum_j = sum + stride * std::size_t(j);
+            sum_i[0] += v.mass[j] * w;
+            sum_j[0] += v.mass[i] * w;
             if (!normalised_) continue;
-            volume_sum_[i] += v.mass[j] / rho[j] * w;
-            volume_sum_[j] += v.mass[i] / rho[i] * w;
-        }
-        for (uint32_t i = 0; i < v.body_count; ++i) {
-            if (v.group[i] == boundary_) continue;
-            const double mass = mass_sum_[i] + v.mass[i] * w0;  // eq. 8 includes j = i
-            rho[i] = normalised_ ? mass / (volume_sum_[i] + v.mass[i] / rho[i] * w0) : mass;
+            sum_i[1] += v.mass[j] / rho[j] * w;
+            sum_j[1] += v.mass[i] / rho[i] * w;
         }
     }
 
-private:
     plab::sph::KernelKind kind_;
     double h_;
     int boundary_;
     bool normalised_;
-    std::vector<double> mass_sum_, volume_sum_;
+    std::vector<double> partial_;
 };
 
 // XSPH (thesis eq. 18; Monaghan 1989): a particle moves with its velocity

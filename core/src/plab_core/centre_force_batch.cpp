@@ -31,6 +31,12 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     } else {
         n_active = range_test_rows(inst, si, begin, end, d.row, d.distance, nullptr);  // (gap: below)
     }
+    // only the optional inputs the model reads (abi.h, PLAB_IO_*): `sph`
+    // reads the masses, not the effective mass and radius (two divisions)
+    d.poison_unread(inst);
+    const bool spin = inst.uses(PLAB_IO_REL_ANGULAR_VELOCITY), radii = inst.uses(PLAB_IO_RADII),
+               masses = inst.uses(PLAB_IO_MASSES), eff_mass = inst.uses(PLAB_IO_EFF_MASS),
+               eff_radius = inst.uses(PLAB_IO_EFF_RADIUS);
     bool exceeded = false;
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];
@@ -45,20 +51,18 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         d.end2[a] = j;
         put(d.normal, a, normal);  // (no contact point: readers recompute it, World::contact_point)
         put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
-        put(d.rel_angular_velocity, a, Vec::Zero());
-        d.radius1[a] = ri;
-        d.radius2[a] = rj;
-        d.mass1[a] = mi;
-        d.mass2[a] = mj;
-        d.eff_mass[a] = mi * mj / (mi + mj);
-        d.eff_radius[a] = ri * rj / (ri + rj);
+        if (spin) put(d.rel_angular_velocity, a, Vec::Zero());
+        if (radii) { d.radius1[a] = ri; d.radius2[a] = rj; }
+        if (masses) { d.mass1[a] = mi; d.mass2[a] = mj; }
+        if (eff_mass) d.eff_mass[a] = mi * mj / (mi + mj);
+        if (eff_radius) d.eff_radius[a] = ri * rj / (ri + rj);
         for (std::size_t h = 0; h < stride; ++h) d.history[a * stride + h] = s.history[k * stride + h];
         exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
     }
     d.count = std::uint32_t(n_active);
     // only the outputs the host reads start from zero (dt limit: no limit)
     std::fill_n(d.force, 3 * n_active, 0.0);
-    std::fill_n(d.dt_limit, n_active, kInf);
+    if (inst.uses(PLAB_IO_DT_LIMIT)) std::fill_n(d.dt_limit, n_active, kInf);
     return exceeded;
 }
 
@@ -73,11 +77,12 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
     const std::int32_t lo = ch.lo;
     double *force = s.force.data(), *dt_limit = s.dt_limit.data(), *history = s.history.data();
+    const bool with_dt_limit = inst.uses(PLAB_IO_DT_LIMIT);  // (the set keeps the column then: ContactSet::keeps)
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
         for (std::size_t h = 0; h < stride; ++h) history[k * stride + h] = d.history[a * stride + h];
         copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
-        dt_limit[k] = d.dt_limit[a];  // (a per-pair CFL limit: seldom uniform, so no write_back())
+        if (with_dt_limit) dt_limit[k] = d.dt_limit[a];  // (a per-pair CFL limit: seldom uniform, so no write_back())
         double* f1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
         double* f2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
         for (int c = 0; c < 3; ++c) {

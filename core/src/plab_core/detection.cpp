@@ -30,8 +30,9 @@ void fill(std::vector<T>& v, std::size_t n, T x) {
 
 bool ContactSet::keeps(std::uint32_t io_bit) const {
     if (!packed) return true;
-    if (model_flags & PLAB_MODEL_FORCE_AT_CENTRES) return io_bit == PLAB_IO_DT_LIMIT;  // no moment, no stiffness
-    return io_bit == 0 || !(model_io & PLAB_IO_DECLARED) || (model_io & io_bit);
+    const bool written = !(model_io & PLAB_IO_DECLARED) || (model_io & io_bit);
+    if (model_flags & PLAB_MODEL_FORCE_AT_CENTRES) return io_bit == PLAB_IO_DT_LIMIT && written;  // no moment, no stiffness
+    return io_bit == 0 || written;
 }
 
 void ContactSet::resize_columns(std::size_t n, int n_acc) {
@@ -91,7 +92,7 @@ bool World::displacement_exceeds_skin() const {
     return 2.0 * max_disp > s || max_disp + wall_motion_since_build_ > s;
 }
 
-void World::build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const {
+void World::build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) {
     const std::size_t n = bodies.size();
     if (n < 2 || instances_.empty()) return;
     const double s = effective_skin();
@@ -132,24 +133,46 @@ void World::build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>
     }
     const int ng = int(groups_.size());
     const long zr = dim == 3 ? 1 : 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const Vec& pi = bodies.position[i];
-        const long cx = cell_of(pi, 0), cy = cell_of(pi, 1), cz = dim == 3 ? cell_of(pi, 2) : 0;
-        for (long z = std::max(0L, cz - zr); z <= std::min(dims[2] - 1, cz + zr); ++z)
-            for (long y = std::max(0L, cy - 1); y <= std::min(dims[1] - 1, cy + 1); ++y)
-                for (long x = std::max(0L, cx - 1); x <= std::min(dims[0] - 1, cx + 1); ++x) {
-                    const long c = flat(x, y, z);
-                    for (std::int32_t t = start[c]; t < start[c + 1]; ++t) {
-                        const std::int32_t j = items[t];
-                        if (std::size_t(j) <= i) continue;
-                        const int inst = cmat_[bodies.group[i] * ng + bodies.group[j]];
-                        if (inst < 0) continue;
-                        const double cut = cutoff(*instances_[inst], bodies.radius[i], bodies.radius[j], s);
-                        if ((bodies.position[j] - pi).squaredNorm() <= cut * cut)
-                            out[inst].push_back({std::int32_t(i), j});
+    // blocks of bodies list their pairs apart (threads take whole blocks),
+    // then the lists are joined in block order: the order of one walk over
+    // the bodies, for any thread count
+    constexpr std::size_t block = 1024;
+    const std::size_t n_blocks = (n + block - 1) / block;
+    auto& block_pairs = rebuild_scratch_.block_pairs;  // [block][model]: cleared, not freed
+    block_pairs.resize(n_blocks);
+#pragma omp parallel for schedule(dynamic) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_blocks; ++b) {
+        auto& lists = block_pairs[b];
+        lists.resize(out.size());
+        for (auto& l : lists) l.clear();
+        // the grid in this thread's locals: push_back() may allocate, after
+        // which anything shared between the threads is read again
+        const std::array<long, 3> d = dims;
+        const Vec origin = lo;
+        const double size = cell;
+        const std::int32_t *first = start.data(), *item = items.data();
+        auto cell_at = [&](const Vec& p, int c) { return std::min(d[c] - 1, long((p[c] - origin[c]) / size)); };
+        for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
+            const Vec& pi = bodies.position[i];
+            const long cx = cell_at(pi, 0), cy = cell_at(pi, 1), cz = zr ? cell_at(pi, 2) : 0;
+            for (long z = std::max(0L, cz - zr); z <= std::min(d[2] - 1, cz + zr); ++z)
+                for (long y = std::max(0L, cy - 1); y <= std::min(d[1] - 1, cy + 1); ++y)
+                    for (long x = std::max(0L, cx - 1); x <= std::min(d[0] - 1, cx + 1); ++x) {
+                        const long c = (z * d[1] + y) * d[0] + x;
+                        for (std::int32_t t = first[c]; t < first[c + 1]; ++t) {
+                            const std::int32_t j = item[t];
+                            if (std::size_t(j) <= i) continue;
+                            const int inst = cmat_[bodies.group[i] * ng + bodies.group[j]];
+                            if (inst < 0) continue;
+                            const double cut = cutoff(*instances_[inst], bodies.radius[i], bodies.radius[j], s);
+                            if ((bodies.position[j] - pi).squaredNorm() <= cut * cut)
+                                lists[inst].push_back({std::int32_t(i), j});
+                        }
                     }
-                }
+        }
     }
+    for (const auto& lists : block_pairs)
+        for (std::size_t m = 0; m < out.size(); ++m) out[m].insert(out[m].end(), lists[m].begin(), lists[m].end());
 }
 
 void World::build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const {

@@ -61,24 +61,26 @@ void World::mark_set_in_range(std::uint32_t si, bool list) {
     if (list) append_pass_contacts(si);
 }
 
-// The passes' contacts of ball–ball set si from its rows in range.
+// The passes' contacts of ball–ball set si from its rows in range, each
+// batch's at its place in the list (threads take whole batches).
 void World::append_pass_contacts(std::uint32_t si) {
     const ContactSet& s = *sets_[si];
     const RowsInRange& r = in_range_[si];
     const std::size_t n_batches = r.count.size(), base = pc_end1_.size();
+    batch_at_.resize(n_batches);  // where each batch's rows start in the list
     std::size_t total = 0;
-    for (std::uint32_t c : r.count) total += c;
+    for (std::size_t b = 0; b < n_batches; ++b) { batch_at_[b] = base + total; total += r.count[b]; }
     pc_end1_.resize(base + total);
     pc_end2_.resize(base + total);
     pc_wall_.resize(base + total, 0);
-    std::size_t at = base;
+#pragma omp parallel for schedule(static) if (s.size() >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::uint32_t* row = r.row.data() + b * kContactBatch;
+        const std::size_t at = batch_at_[b];
         for (std::size_t a = 0; a < r.count[b]; ++a) {
             pc_end1_[at + a] = s.end1[row[a]];
             pc_end2_[at + a] = s.end2[row[a]];
         }
-        at += r.count[b];
     }
 }
 

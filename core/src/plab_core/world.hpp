@@ -328,6 +328,7 @@ private:
     // active contacts for passes (built only when a pass is loaded)
     std::vector<std::int32_t> pc_end1_, pc_end2_;
     std::vector<std::uint8_t> pc_wall_;
+    std::vector<std::size_t> batch_at_;  // append_pass_contacts(): each batch's first place in the list
 
     // the kept copy: the contact rows whose history is not the model's
     // default, by ends; the others, and all geometry, come back with the
@@ -374,13 +375,14 @@ private:
     double effective_skin() const;
     void resize_fields();
     void rebuild();
-    void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
+    void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out);
     void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
     void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs, bool lean);
     void sort_by_keys(const ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) const;
     // buffers of rebuild() and install_pairs(), kept between rebuilds
     struct RebuildScratch {
         std::vector<std::vector<std::array<std::int32_t, 2>>> ball_pairs, wall_pairs;
+        std::vector<std::vector<std::vector<std::array<std::int32_t, 2>>>> block_pairs;  // build_ball_pairs()
         std::vector<std::int32_t> e1, e2;
         std::vector<double> history;
     };
