@@ -11,10 +11,16 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <thread>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace fs = std::filesystem;
 using namespace plab;
@@ -40,10 +46,29 @@ double checkpoint_interval(const std::string& text) {
     return t;
 }
 
+// OpenMP's idle threads spin a while before they sleep. On a machine whose
+// cores other work keeps busy, a spinning thread waits a whole time slice
+// for its descheduled partner at every parallel region: a 2-thread run was
+// 10-15x slower than 1 thread under load 5 on 2 cores. Say so, with the fix.
+void warn_if_threads_will_spin() {
+#ifdef _OPENMP
+    const int threads = omp_get_max_threads();
+    const unsigned cores = std::thread::hardware_concurrency();
+    double load[1] = {0};
+    if (threads < 2 || std::getenv("OMP_WAIT_POLICY") || getloadavg(load, 1) != 1 || cores == 0) return;
+    if (load[0] + threads > cores + 0.5)
+        spdlog::warn("the machine is busy (load {:.1f} on {} cores) and this run uses {} OpenMP threads, whose idle "
+                     "threads spin: it may run many times slower than with one. Set OMP_WAIT_POLICY=PASSIVE or "
+                     "OMP_NUM_THREADS=1 (results are the same bits with any thread count)",
+                     load[0], cores, threads);
+#endif
+}
+
 // Runs to the end, or until SIGINT/SIGTERM: then the checkpoint is written
 // and the exit code is 128 + the signal, as a shell reports a killed job.
 int run_and_report(Simulation& sim, bool quiet, const std::string& out) {
     install_stop_handlers();
+    if (!quiet) warn_if_threads_will_spin();
     try {
         sim.run();
     } catch (const RunError& e) {

@@ -311,6 +311,7 @@ void World::rebuild() {
     for (auto* lists : {&ball_pairs, &wall_pairs})
         for (auto& l : *lists) l.clear();
     build_ball_pairs(ball_pairs);
+    if (lean) rebuild_scratch_.block_pairs = {};  // joined into ball_pairs
     build_wall_pairs(wall_pairs);
     for (std::size_t m = 0; m < instances_.size(); ++m) {
         keep_bonded_pairs(*instances_[m], instances_[m]->balls, ball_pairs[m]);
