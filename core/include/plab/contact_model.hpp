@@ -152,13 +152,22 @@ template <class M> int compute(void* inst, const double*, const plab_contact_bat
     try {
         for (uint32_t k0 = 0; k0 < b->count; k0 += chunk) {
             const uint32_t k1 = b->count - k0 < chunk ? b->count : k0 + chunk;
+            // a packed batch (the host's dense path) holds active rows only:
+            // then the list is the rows in order, without a test per row
             uint32_t n_active = 0, n_inactive = 0;
-            for (uint32_t k = k0; k < k1; ++k) {
-                const bool a = b->active[k] != 0;
-                active[n_active] = k;
-                inactive[n_inactive] = k;
-                n_active += a;
-                n_inactive += !a;
+            for (uint32_t k = k0; k < k1; ++k) n_inactive += b->active[k] == 0;
+            if (n_inactive == 0) {
+                for (uint32_t k = k0; k < k1; ++k) active[k - k0] = k;
+                n_active = k1 - k0;
+            } else {
+                n_inactive = 0;
+                for (uint32_t k = k0; k < k1; ++k) {
+                    const bool a = b->active[k] != 0;
+                    active[n_active] = k;
+                    inactive[n_inactive] = k;
+                    n_active += a;
+                    n_inactive += !a;
+                }
             }
             if constexpr (has_history<M>::value)
                 for (uint32_t r = 0; r < n_inactive; ++r) {
