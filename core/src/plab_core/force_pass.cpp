@@ -10,6 +10,7 @@
 #include <cmath>
 #include <sstream>
 #include <tuple>
+#include <utility>
 
 namespace plab {
 
@@ -487,6 +488,8 @@ bool World::reduce() {
     bool non_finite = false;
     const std::size_t n_blocks = body_blocks();
     block_local_work_.assign(n_blocks, 0.0);  // local damping work per block
+    const double closing_kick = std::exchange(fused_closing_kick_, 0.0);
+    if (closing_kick > 0) prepare_body_blocks();
 #pragma omp parallel for schedule(static) reduction(| : non_finite) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_blocks; ++b) {
         const std::size_t i0 = b * kBodyBlock, i1 = std::min(n, i0 + kBodyBlock);
@@ -494,6 +497,8 @@ bool World::reduce() {
         double work = 0;
         non_finite |= !finish_bodies(i0, i1, work);
         block_local_work_[b] = work;
+        // the step's closing half kick while the block is in cache (advance())
+        if (closing_kick > 0) kick_block_of_bodies(b, closing_kick, true);
     }
     double local_work = 0;
     for (double w : block_local_work_) local_work += w;

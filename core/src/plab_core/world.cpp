@@ -327,10 +327,18 @@ void World::advance() {
     }
     time += dt;
     ++step_count;
-    force_pass();
+    bool post_force = false;
+    for (const auto& p : passes_) post_force |= p.desc->phase == PLAB_PHASE_POST_FORCE;
+    fused_closing_kick_ = post_force ? 0.0 : 0.5 * dt;  // reduce() takes it (and resets it)
+    try {
+        force_pass();
+    } catch (...) {
+        fused_closing_kick_ = 0;  // a later force pass (prepare()) must not kick
+        throw;
+    }
     {
         PhaseTimer t{phase_seconds[ph_motion]};
-        kick(0.5 * dt, true);
+        if (post_force) kick(0.5 * dt, true);
         sum_energies(dt);
     }
     {
