@@ -18,6 +18,40 @@ inline std::uint64_t bits(double v) {
 }
 } // namespace
 
+namespace {
+// The candidate loop of range_test_rows(), with the model's range kind and
+// whether it keeps bonds fixed at compile time: no test of either per row,
+// and fewer live values (the loop kept seven column addresses on the stack).
+struct RangeRows {
+    const std::int32_t *end1, *end2;
+    const double *r1, *r2, *history;
+    const Vec* x;
+    double* gap_col;
+    std::uint8_t *active_col, *live;
+};
+template <bool ByDistance, bool Bonds>
+std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t begin, std::size_t end,
+                      std::uint32_t* row, double* distance, double* gap, std::uint32_t* idle, std::size_t& n_idle) {
+    std::size_t n_active = 0;
+    for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
+        const double dist = (c.x[c.end2[k]] - c.x[c.end1[k]]).norm();
+        const double g = dist - c.r1[k] - c.r2[k];
+        bool active = ByDistance ? dist <= in_range.range : g <= in_range.range;
+        if (Bonds) active |= c.history[k * in_range.stride + std::size_t(in_range.persist)] > 0;
+        c.gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
+        c.active_col[k] = active;
+        gap[n_active] = g;
+        distance[n_active] = dist;
+        row[n_active] = std::uint32_t(k);
+        idle[n_idle] = std::uint32_t(k);
+        n_active += active;
+        n_idle += !active & (c.live[k] != 0);  // just left the range: history to forget
+        c.live[k] = active;
+    }
+    return n_active;
+}
+} // namespace
+
 // Rows [begin, end) of set si, at most one batch: the range test of every
 // candidate (gap and the active flag stay in the set's columns, for every
 // reader), the rows in range listed in `row` with their centre distance
@@ -32,27 +66,20 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
     const std::size_t stride = std::size_t(inst.stride);
     // raw pointers: the byte stores below (flags) may alias anything, so
     // the compiler would otherwise reload every column's address per row
-    const std::int32_t *end1 = s.end1.data(), *end2 = s.end2.data();
-    const double *r1 = s.radius1.data(), *r2 = s.radius2.data(), *history = s.history.data();
-    const Vec* x = bodies.position.data();
-    double* gap_col = s.gap.data();
-    std::uint8_t *active_col = s.active.data(), *live = live_[si].data();
+    const RangeRows c{s.end1.data(), s.end2.data(), s.radius1.data(), s.radius2.data(), s.history.data(),
+                      bodies.position.data(), s.gap.data(), s.active.data(), live_[si].data()};
     std::uint32_t idle[kContactBatch];
-    std::size_t n_active = 0, n_idle = 0;
-    for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
-        const double dist = (x[end2[k]] - x[end1[k]]).norm();
-        const double g = dist - r1[k] - r2[k];
-        const bool active = in_range(history, k, dist, g);
-        gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
-        active_col[k] = active;
-        if (gap) gap[n_active] = g;
-        if (distance) distance[n_active] = dist;
-        row[n_active] = std::uint32_t(k);
-        idle[n_idle] = std::uint32_t(k);
-        n_active += active;
-        n_idle += !active & (live[k] != 0);  // just left the range: history to forget
-        live[k] = active;
-    }
+    double unused[kContactBatch];  // where an output the caller does not take goes
+    if (!distance) distance = unused;
+    if (!gap) gap = unused;
+    std::size_t n_idle = 0, n_active;
+    const bool bonds = in_range.persist >= 0;
+    if (in_range.by_distance)
+        n_active = bonds ? test_rows<true, true>(c, in_range, begin, end, row, distance, gap, idle, n_idle)
+                         : test_rows<true, false>(c, in_range, begin, end, row, distance, gap, idle, n_idle);
+    else
+        n_active = bonds ? test_rows<false, true>(c, in_range, begin, end, row, distance, gap, idle, n_idle)
+                         : test_rows<false, false>(c, in_range, begin, end, row, distance, gap, idle, n_idle);
     for (std::size_t r = 0; r < n_idle; ++r)
         for (std::size_t h = 0; h < stride; ++h) s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
     return n_active;
