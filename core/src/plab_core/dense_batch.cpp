@@ -50,6 +50,30 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
     }
     return n_active;
 }
+// The history of the packed rows, in from the set's rows row[a] (gather) or
+// back out to them (scatter), in loops of their own: the main loops keep
+// fewer values live, and a model's usual stride (3: a shear force) copies
+// without a loop per row.
+template <std::size_t Stride>
+void gather_history(double* dense, const double* set, const std::uint32_t* row, std::size_t n) {
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t h = 0; h < Stride; ++h) dense[a * Stride + h] = set[row[a] * Stride + h];
+}
+template <std::size_t Stride>
+void scatter_history(double* set, const double* dense, const std::uint32_t* row, std::size_t n) {
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t h = 0; h < Stride; ++h) set[row[a] * Stride + h] = dense[a * Stride + h];
+}
+void gather_history(double* dense, const double* set, const std::uint32_t* row, std::size_t n, std::size_t stride) {
+    if (stride == 3) return gather_history<3>(dense, set, row, n);
+    for (std::size_t a = 0; a < n; ++a)  // a loop, not a memmove call, for a few doubles
+        for (std::size_t h = 0; h < stride; ++h) dense[a * stride + h] = set[row[a] * stride + h];
+}
+void scatter_history(double* set, const double* dense, const std::uint32_t* row, std::size_t n, std::size_t stride) {
+    if (stride == 3) return scatter_history<3>(set, dense, row, n);
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t h = 0; h < stride; ++h) set[row[a] * stride + h] = dense[a * stride + h];
+}
 } // namespace
 
 // Rows [begin, end) of set si, at most one batch: the range test of every
@@ -118,9 +142,9 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         if (masses) { d.mass1[a] = mi; d.mass2[a] = mj; }
         if (eff_mass) d.eff_mass[a] = mi * mj / (mi + mj);
         if (eff_radius) d.eff_radius[a] = ri * rj / (ri + rj);
-        for (std::size_t h = 0; h < stride; ++h) d.history[a * stride + h] = s.history[k * stride + h];  // a loop, not a memmove call, for a few doubles
         exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
     }
+    gather_history(d.history.data(), s.history.data(), d.row, n_active, stride);
     d.count = std::uint32_t(n_active);
     // the outputs a model adds to start from zero (dt limit: no limit); the
     // optional ones only when it writes them
@@ -184,7 +208,6 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     double strain = 0, slip = 0, dashpot = 0, broken = 0;
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
-        for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = d.history[a * stride + h];
         copy3(s.force.data(), k, d.force, a);
         if (!s.packed) {  // a packed set recomputes them on demand (contact_point())
             copy3(s.point.data(), k, d.point, a);
@@ -203,6 +226,7 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
         for (int c = 0; c < 3; ++c) { f1m1[c] -= f2[c]; f1m1[3 + c] += m1[c]; }
         for (int c = 0; c < 3; ++c) { f2m2[c] += f2[c]; f2m2[3 + c] += m2[c]; }
     }
+    scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = 0;
     if (d.count == 0) return;  // no row to report: what the columns hold is not read
