@@ -29,19 +29,33 @@ struct RangeRows {
     double* gap_col;
     std::uint8_t *active_col, *live;
 };
+// In two loops: the geometry and flags of every row first, then the lists.
+// In one loop the list stores waited for their addresses, the counts, which
+// wait for each row's square root: the rows no longer overlapped.
 template <bool ByDistance, bool Bonds>
 std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t begin, std::size_t end,
                       std::uint32_t* row, double* distance, double* gap, std::uint32_t* idle, std::size_t& n_idle) {
-    std::size_t n_active = 0;
-    for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
+    const std::size_t n = end - begin;  // at most kContactBatch
+    double dist_of[kContactBatch], gap_of[kContactBatch];
+    std::uint8_t in[kContactBatch];
+    for (std::size_t r = 0; r < n; ++r) {
+        const std::size_t k = begin + r;
         const double dist = (c.x[c.end2[k]] - c.x[c.end1[k]]).norm();
         const double g = dist - c.r1[k] - c.r2[k];
         bool active = ByDistance ? dist <= in_range.range : g <= in_range.range;
         if (Bonds) active |= c.history[k * in_range.stride + std::size_t(in_range.persist)] > 0;
         c.gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
+        dist_of[r] = dist;
+        gap_of[r] = g;
+        in[r] = active;
+    }
+    std::size_t n_active = 0;
+    for (std::size_t r = 0; r < n; ++r) {  // no branch per row: in-range flags follow no pattern
+        const std::size_t k = begin + r;
+        const bool active = in[r] != 0;
         c.active_col[k] = active;
-        gap[n_active] = g;
-        distance[n_active] = dist;
+        gap[n_active] = gap_of[r];
+        distance[n_active] = dist_of[r];
         row[n_active] = std::uint32_t(k);
         idle[n_idle] = std::uint32_t(k);
         n_active += active;
