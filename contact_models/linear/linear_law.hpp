@@ -140,7 +140,7 @@ inline Vec3 apply(const Params& p, const Contact& c, int shear_slot, double& str
 // the same operations as apply(), so the same bits.
 // (restrict parameters, not locals: GCC proves the columns apart only so)
 template <std::size_t Stride>
-void apply_rows(const Params p, std::size_t k0, std::size_t k1, double dt, std::size_t stride,
+[[gnu::always_inline]] inline void apply_rows(const Params p, std::size_t k0, std::size_t k1, double dt, std::size_t stride,
                 const double* __restrict normal, const double* __restrict rel_velocity, const double* __restrict gap,
                 const double* __restrict eff_mass, double* __restrict history, double* __restrict force,
                 double* __restrict strain, double* __restrict slip, double* __restrict dashpot,
@@ -162,11 +162,15 @@ void apply_rows(const Params p, std::size_t k0, std::size_t k1, double dt, std::
         k_t[k] = stiffness;
     }
 }
-inline void apply_rows(const Params& p, const plab_contact_batch& b, std::size_t k0, std::size_t k1, int shear_slot,
-                       double stiffness) {
-    auto rows = b.history_stride == 3 ? &apply_rows<3> : &apply_rows<0>;
-    rows(p, k0, k1, b.dt, b.history_stride, b.normal, b.rel_velocity, b.gap, b.eff_mass, b.history + shear_slot,
-         b.force, b.strain_energy, b.slip_energy, b.dashpot_energy, b.stiffness_translational, stiffness);
+[[gnu::always_inline]] inline void apply_rows(const Params& p, const plab_contact_batch& b, std::size_t k0,
+                                              std::size_t k1, int shear_slot, double stiffness) {
+    if (b.history_stride == 3)
+        apply_rows<3>(p, k0, k1, b.dt, 3, b.normal, b.rel_velocity, b.gap, b.eff_mass, b.history + shear_slot, b.force,
+                      b.strain_energy, b.slip_energy, b.dashpot_energy, b.stiffness_translational, stiffness);
+    else
+        apply_rows<0>(p, k0, k1, b.dt, b.history_stride, b.normal, b.rel_velocity, b.gap, b.eff_mass,
+                      b.history + shear_slot, b.force, b.strain_energy, b.slip_energy, b.dashpot_energy,
+                      b.stiffness_translational, stiffness);
 }
 
 } // namespace plab::linear_law
