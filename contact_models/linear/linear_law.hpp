@@ -49,57 +49,128 @@ struct Params {
 
 // Keeps a stored vector (shear force, bending moment) in the current contact
 // plane: project out the normal component and restore the magnitude (PFC's
-// rotation of the shear force with the contact plane).
+// rotation of the shear force with the contact plane). Written as choices
+// between values, not branches, so that a loop over contacts can be
+// vectorised (apply_rows()); a zero vector is returned as it is.
 inline Vec3 rotate_into_plane(const Vec3& v, const Vec3& n) {
     const double mag2 = dot(v, v);
-    if (mag2 == 0.0) return v;
     const Vec3 t = v - dot(v, n) * n;
     const double tmag2 = dot(t, t);
-    return tmag2 > 0.0 ? t * std::sqrt(mag2 / tmag2) : Vec3{};
+    const double scale = std::sqrt(mag2 / tmag2);  // (not finite when tmag2 is 0: then not used)
+    const bool zero = mag2 == 0.0, in_plane = tmag2 > 0.0;
+    return {zero ? v.x : in_plane ? t.x * scale : 0.0, zero ? v.y : in_plane ? t.y * scale : 0.0,
+            zero ? v.z : in_plane ? t.z * scale : 0.0};
+}
+
+// What the law needs of one contact, and what it gives back.
+struct State {
+    Vec3 normal, rel_velocity, shear_force;  // shear force: the stored history
+    double gap, eff_mass, dt;
+};
+struct Result {
+    Vec3 force, shear_force;       // force on end 2; the history to store
+    double strain, slip, dashpot;  // strain energy; slip and dashpot energy to add
+};
+
+// The law (eqs. 21–29) for one contact, as a function of values: every
+// contact takes the same operations and the branches are choices between
+// values, so that a loop over a batch can be vectorised (apply_rows());
+// apply() is the same function for one Contact. Inactive (surface gap >
+// rgap): zero force and energies, and the shear history is forgotten.
+inline Result law(const Params& p, const State& c) {
+    const Vec3& n = c.normal;
+    const double overlap = p.rgap - c.gap;  // surface gap relative to the reference gap
+    const bool active = !(overlap < 0.0);
+    const Vec3& v = c.rel_velocity;
+    const double vn = dot(v, n);
+    const Vec3 vs = v - vn * n;
+    const double fn_lin = p.kn * overlap;  // eq. 22
+
+    const Vec3 fs_old = rotate_into_plane(c.shear_force, n);
+    const Vec3 fs_trial = fs_old - p.ks * c.dt * vs;  // eqs. 23–25
+    const double fs_max = p.fric * fn_lin;            // eq. 26
+    const double fs_mag2 = dot(fs_trial, fs_trial);   // compared squared: most contacts stick
+    const bool sliding = fs_mag2 > fs_max * fs_max;
+    // (the work of a sliding contact inside the choices: a scalar loop
+    // branches around it, a vectorised one takes both sides)
+    const double cap = sliding ? fs_max / std::sqrt(fs_mag2) : 1.0;
+    const Vec3 fs = fs_trial * cap;  // (x 1: the same bits)
+
+    const double sqrt_m = std::sqrt(c.eff_mass);
+    double fn_d = -p.cn * sqrt_m * vn;  // eq. 27, on end 2
+    // (& and |, not && and ||: no branch in a vectorised loop)
+    const bool shear_dashpot = !(((p.dp_mode == 1) | (p.dp_mode == 3)) & sliding);
+    const Vec3 fs_d_on = -p.cs * sqrt_m * vs;  // eq. 28
+    const Vec3 fs_d = {shear_dashpot ? fs_d_on.x : 0.0, shear_dashpot ? fs_d_on.y : 0.0,
+                       shear_dashpot ? fs_d_on.z : 0.0};
+    const bool no_tension = ((p.dp_mode == 2) | (p.dp_mode == 3)) & (fn_lin + fn_d < 0.0);
+    fn_d = no_tension ? -fn_lin : fn_d;  // no tension in total
+
+    const double strain = 0.5 * fn_lin * fn_lin * p.inv_kn + 0.5 * dot(fs, fs) * p.inv_ks;
+    const double dashpot = -(fn_d * vn + dot(fs_d, vs)) * c.dt;
+    const Vec3 force = (fn_lin + fn_d) * n + fs + fs_d;
+    Result r;
+    r.force = {active ? force.x : 0.0, active ? force.y : 0.0, active ? force.z : 0.0};
+    r.shear_force = {active ? fs.x : 0.0, active ? fs.y : 0.0, active ? fs.z : 0.0};
+    r.strain = active ? strain : 0.0;
+    // energy dissipated by the slip displacement (fs_trial - fs)/ks at mean force
+    r.slip = active & sliding & (p.ks > 0.0) ? std::fabs(dot(0.5 * (fs + fs_old), (fs_trial - fs) * p.inv_ks)) : 0.0;
+    r.dashpot = active ? dashpot : 0.0;
+    return r;
 }
 
 // Applies the law to contact c with its shear force stored in history slots
 // [shear_slot, shear_slot + 3). Returns the force on end 2; adds the strain,
-// slip and dashpot energies. Inactive (surface gap > rgap): zero force and
-// the shear history is forgotten.
-// (always inlined into the batch loop: GCC otherwise calls it once per contact)
-[[gnu::always_inline]] inline Vec3 apply(const Params& p, const Contact& c, int shear_slot, double& strain) {
-    const Vec3 n = c.normal();
-    const double overlap = p.rgap - c.gap();  // surface gap relative to the reference gap
-    if (overlap < 0.0) {
-        c.set_history_vec(shear_slot, Vec3{});
-        return Vec3{};
+// slip and dashpot energies.
+inline Vec3 apply(const Params& p, const Contact& c, int shear_slot, double& strain) {
+    const Result r = law(p, {c.normal(), c.rel_velocity(), c.history_vec(shear_slot), c.gap(), c.eff_mass(), c.dt()});
+    c.set_history_vec(shear_slot, r.shear_force);
+    c.add_slip_energy(r.slip);
+    c.add_dashpot_energy(r.dashpot);
+    strain += r.strain;
+    return r.force;
+}
+
+// The law on rows [k0, k1) of a batch whose rows are all active (the host's
+// packed batch), with a shear force in history slots [shear_slot, +3) and
+// the force, strain energy and stiffness set as `linear` sets them. One loop
+// over the rows' columns that GCC vectorises when the history stride is
+// known (Stride > 0; two contacts per SSE2 instruction; the plug-in is built
+// with -fno-trapping-math, which lets it evaluate both sides of a choice):
+// the same operations as apply(), so the same bits.
+// (restrict parameters, not locals: GCC proves the columns apart only so)
+template <std::size_t Stride>
+[[gnu::always_inline]] inline void apply_rows(const Params p, std::size_t k0, std::size_t k1, double dt, std::size_t stride,
+                const double* __restrict normal, const double* __restrict rel_velocity, const double* __restrict gap,
+                const double* __restrict eff_mass, double* __restrict history, double* __restrict force,
+                double* __restrict strain, double* __restrict slip, double* __restrict dashpot,
+                double* __restrict k_t, double stiffness) {
+    if (Stride > 0) stride = Stride;
+    for (std::size_t k = k0; k < k1; ++k) {
+        double* h = history + k * stride;
+        const Result r = law(p, {{normal[3 * k], normal[3 * k + 1], normal[3 * k + 2]},
+                                 {rel_velocity[3 * k], rel_velocity[3 * k + 1], rel_velocity[3 * k + 2]},
+                                 {h[0], h[1], h[2]},
+                                 gap[k],
+                                 eff_mass[k],
+                                 dt});
+        h[0] = r.shear_force.x; h[1] = r.shear_force.y; h[2] = r.shear_force.z;
+        force[3 * k] = r.force.x; force[3 * k + 1] = r.force.y; force[3 * k + 2] = r.force.z;
+        slip[k] += r.slip;
+        dashpot[k] += r.dashpot;
+        strain[k] = r.strain;
+        k_t[k] = stiffness;
     }
-    const Vec3 v = c.rel_velocity();
-    const double vn = dot(v, n);
-    const Vec3 vs = v - vn * n;
-    const double dt = c.dt();
-    const double fn_lin = p.kn * overlap;  // eq. 22
-
-    const Vec3 fs_old = rotate_into_plane(c.history_vec(shear_slot), n);
-    Vec3 fs = fs_old - p.ks * dt * vs;  // eqs. 23–25
-    const double fs_max = p.fric * fn_lin;  // eq. 26
-    const double fs_mag2 = dot(fs, fs);  // compared squared: most contacts stick, and need no sqrt
-    bool sliding = false;
-    if (fs_mag2 > fs_max * fs_max) {
-        const double fs_mag = std::sqrt(fs_mag2);
-        const Vec3 capped = fs * (fs_max / fs_mag);
-        // energy dissipated by the slip displacement (fs - capped)/ks at mean force
-        if (p.ks > 0.0) c.add_slip_energy(std::fabs(dot(0.5 * (capped + fs_old), (fs - capped) * p.inv_ks)));
-        fs = capped;
-        sliding = true;
-    }
-    c.set_history_vec(shear_slot, fs);
-
-    const double sqrt_m = std::sqrt(c.eff_mass());
-    double fn_d = -p.cn * sqrt_m * vn;  // eq. 27, on end 2
-    const bool shear_dashpot = !((p.dp_mode == 1 || p.dp_mode == 3) && sliding);
-    const Vec3 fs_d = shear_dashpot ? -p.cs * sqrt_m * vs : Vec3{};  // eq. 28
-    if ((p.dp_mode == 2 || p.dp_mode == 3) && fn_lin + fn_d < 0.0) fn_d = -fn_lin;  // no tension in total
-
-    strain += 0.5 * fn_lin * fn_lin * p.inv_kn + 0.5 * dot(fs, fs) * p.inv_ks;
-    c.add_dashpot_energy(-(fn_d * vn + dot(fs_d, vs)) * dt);
-    return (fn_lin + fn_d) * n + fs + fs_d;
+}
+[[gnu::always_inline]] inline void apply_rows(const Params& p, const plab_contact_batch& b, std::size_t k0,
+                                              std::size_t k1, int shear_slot, double stiffness) {
+    if (b.history_stride == 3)
+        apply_rows<3>(p, k0, k1, b.dt, 3, b.normal, b.rel_velocity, b.gap, b.eff_mass, b.history + shear_slot, b.force,
+                      b.strain_energy, b.slip_energy, b.dashpot_energy, b.stiffness_translational, stiffness);
+    else
+        apply_rows<0>(p, k0, k1, b.dt, b.history_stride, b.normal, b.rel_velocity, b.gap, b.eff_mass,
+                      b.history + shear_slot, b.force, b.strain_energy, b.slip_energy, b.dashpot_energy,
+                      b.stiffness_translational, stiffness);
 }
 
 } // namespace plab::linear_law

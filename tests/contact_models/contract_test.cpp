@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 using namespace plab;
@@ -27,7 +28,7 @@ struct ContactInput {
 
 struct ContactOutput {
     Vec force, moment1, moment2;
-    double strain = 0, k_t = 0, k_r = 0, dt_limit = 0;
+    double strain = 0, slip = 0, dashpot = 0, k_t = 0, k_r = 0, dt_limit = 0;
     std::vector<double> history;
 };
 
@@ -83,6 +84,8 @@ std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state
         out[k].moment1 = Vec(&mo1[3 * k]);
         out[k].moment2 = Vec(&mo2[3 * k]);
         out[k].strain = strain[k];
+        out[k].slip = slip[k];
+        out[k].dashpot = dash[k];
         out[k].k_t = kt[k];
         out[k].k_r = kr[k];
         out[k].dt_limit = dtl[k];
@@ -295,5 +298,67 @@ TEST_CASE("contract: every active contact reports a positive stable timestep", "
         const bool has_limit = out.dt_limit > 0 && std::isfinite(out.dt_limit);
         CHECK((has_stiffness || has_limit));
         CHECK(out.k_r >= 0);
+    }
+}
+
+// A model may run a batch whose rows are all active through its own loop
+// (the adapter's law_rows(), e.g. vectorised: `linear`); the host's packed
+// batches are such batches. It must give, bit for bit, what the same rows
+// give one by one in a batch that also holds inactive rows: forces,
+// history, energies and stiffness. Two steps, so that the second starts
+// from a stored shear force (rotated into a turned contact plane), with
+// speeds from sticking to sliding, for every value of a mode property.
+TEST_CASE("contract: a batch of active rows only gives what the same rows give among inactive ones, bit for bit",
+          "[contract]") {
+    const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    PluginHost host;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (auto& m : every_model(host)) {
+        const plab_contact_model_desc& d = *m->d;
+        if (d.range_kind != PLAB_RANGE_GAP || d.persist_slot >= 0) continue;  // inactive rows made by their gap
+        std::vector<std::vector<double>> prop_sets{m->props};
+        for (uint32_t p = 0; p < d.property_count; ++p)  // every value of a small integer property (a mode)
+            if ((d.properties[p].flags & PLAB_INTEGER) && d.properties[p].max_value - d.properties[p].min_value <= 4)
+                for (double v = d.properties[p].min_value; v <= d.properties[p].max_value; v += 1) {
+                    prop_sets.push_back(m->props);
+                    prop_sets.back()[p] = v;
+                }
+        for (const auto& props : prop_sets) {
+            void* state = d.create ? d.create(props.data()) : nullptr;
+            std::vector<ContactInput> rows;
+            for (int k = 0; k < 300; ++k) {
+                ContactInput c = typical(d, props, 3, rng);
+                c.rel_velocity *= std::pow(10.0, 2 * u(rng));  // 0.005 to 50 m/s: sticking and sliding
+                rows.push_back(c);
+            }
+            for (int step = 0; step < 2; ++step) {
+                std::vector<ContactInput> mixed;  // each row, then an inactive one
+                for (const ContactInput& c : rows) {
+                    mixed.push_back(c);
+                    ContactInput far = c;
+                    far.gap = d.activity_range(props.data()) + 1e-3;
+                    mixed.push_back(far);
+                }
+                const auto dense = compute(d, state, props, 3, 1e-4, rows);
+                const auto one_by_one = compute(d, state, props, 3, 1e-4, mixed);
+                for (std::size_t k = 0; k < rows.size(); ++k) {
+                    const ContactOutput &a = dense[k], &b = one_by_one[2 * k];
+                    INFO("model " << d.name << ", step " << step << ", row " << k);
+                    for (int c = 0; c < 3; ++c) CHECK(same_bits(a.force[c], b.force[c]));
+                    for (std::size_t h = 0; h < a.history.size(); ++h) CHECK(same_bits(a.history[h], b.history[h]));
+                    CHECK(same_bits(a.strain, b.strain));
+                    CHECK(same_bits(a.slip, b.slip));
+                    CHECK(same_bits(a.dashpot, b.dashpot));
+                    CHECK(same_bits(a.k_t, b.k_t));
+                }
+                for (std::size_t k = 0; k < rows.size(); ++k) {  // the next step: stored history, turned plane
+                    rows[k].history = dense[k].history;
+                    const Eigen::Matrix3d R(Eigen::AngleAxisd(0.05 * u(rng), Vec(u(rng), u(rng), u(rng)).normalized()));
+                    rows[k].normal = R * rows[k].normal;
+                }
+            }
+            if (d.destroy && state) d.destroy(state);
+        }
     }
 }

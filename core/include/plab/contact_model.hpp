@@ -22,6 +22,10 @@
 // `persist_slot` (int) for a model with bonds; `rates_stage` (bool) for a
 // model that accumulates field rates before forces (SPH; see abi.h);
 // `flags` (uint32_t, PLAB_MODEL_* of abi.h) e.g. for a force between centres;
+// `law_rows(const plab_contact_batch&, std::size_t k0, std::size_t k1) const`:
+// the law on rows [k0, k1) when all of them are active (the host's packed
+// batches), e.g. as one loop the compiler can vectorise; it must give what
+// law() gives row by row, bit for bit;
 // `io` (uint32_t, PLAB_IO_* of abi.h): the optional inputs the law reads and
 // outputs it writes, e.g. `PLAB_IO_EFF_MASS` for a law that reads only the
 // effective mass besides normal, gap and relative velocity; the host then
@@ -36,6 +40,7 @@
 #include <cstddef>
 #include <limits>
 #include <type_traits>
+#include <utility>
 
 #if defined(_WIN32)
 #define PLAB_EXPORT __declspec(dllexport)
@@ -129,6 +134,11 @@ template <class M, class = void> struct has_flags : std::false_type {};
 template <class M> struct has_flags<M, std::void_t<decltype(M::flags)>> : std::true_type {};
 template <class M, class = void> struct has_io : std::false_type {};
 template <class M> struct has_io<M, std::void_t<decltype(M::io)>> : std::true_type {};
+template <class M, class = void> struct has_law_rows : std::false_type {};
+template <class M>
+struct has_law_rows<M, std::void_t<decltype(std::declval<const M&>().law_rows(std::declval<const plab_contact_batch&>(),
+                                                                              std::size_t(), std::size_t()))>>
+    : std::true_type {};
 template <class M, class = void> struct has_history : std::false_type {};
 template <class M> struct has_history<M, std::void_t<decltype(M::history)>> : std::true_type {};
 
@@ -152,13 +162,26 @@ template <class M> int compute(void* inst, const double*, const plab_contact_bat
     try {
         for (uint32_t k0 = 0; k0 < b->count; k0 += chunk) {
             const uint32_t k1 = b->count - k0 < chunk ? b->count : k0 + chunk;
+            // a packed batch (the host's dense path) holds active rows only:
+            // then the list is the rows in order, without a test per row
             uint32_t n_active = 0, n_inactive = 0;
-            for (uint32_t k = k0; k < k1; ++k) {
-                const bool a = b->active[k] != 0;
-                active[n_active] = k;
-                inactive[n_inactive] = k;
-                n_active += a;
-                n_inactive += !a;
+            for (uint32_t k = k0; k < k1; ++k) n_inactive += b->active[k] == 0;
+            if (n_inactive == 0) {
+                if constexpr (has_law_rows<M>::value) {  // the model's own loop over the rows
+                    model.law_rows(*b, k0, k1);
+                    continue;
+                }
+                for (uint32_t k = k0; k < k1; ++k) active[k - k0] = k;
+                n_active = k1 - k0;
+            } else {
+                n_inactive = 0;
+                for (uint32_t k = k0; k < k1; ++k) {
+                    const bool a = b->active[k] != 0;
+                    active[n_active] = k;
+                    inactive[n_inactive] = k;
+                    n_active += a;
+                    n_inactive += !a;
+                }
             }
             if constexpr (has_history<M>::value)
                 for (uint32_t r = 0; r < n_inactive; ++r) {

@@ -18,6 +18,78 @@ inline std::uint64_t bits(double v) {
 }
 } // namespace
 
+namespace {
+// The candidate loop of range_test_rows(), with the model's range kind and
+// whether it keeps bonds fixed at compile time: no test of either per row,
+// and fewer live values (the loop kept seven column addresses on the stack).
+struct RangeRows {
+    const std::int32_t *end1, *end2;
+    const double *r1, *r2, *history;
+    const Vec* x;
+    double* gap_col;
+    std::uint8_t *active_col, *live;
+};
+// In two loops: the geometry and flags of every row first, then the lists.
+// In one loop the list stores waited for their addresses, the counts, which
+// wait for each row's square root: the rows no longer overlapped.
+template <bool ByDistance, bool Bonds>
+std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t begin, std::size_t end,
+                      std::uint32_t* row, double* distance, double* gap, std::uint32_t* idle, std::size_t& n_idle) {
+    const std::size_t n = end - begin;  // at most kContactBatch
+    double dist_of[kContactBatch], gap_of[kContactBatch];
+    std::uint8_t in[kContactBatch];
+    for (std::size_t r = 0; r < n; ++r) {
+        const std::size_t k = begin + r;
+        const double dist = (c.x[c.end2[k]] - c.x[c.end1[k]]).norm();
+        const double g = dist - c.r1[k] - c.r2[k];
+        bool active = ByDistance ? dist <= in_range.range : g <= in_range.range;
+        if (Bonds) active |= c.history[k * in_range.stride + std::size_t(in_range.persist)] > 0;
+        c.gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
+        dist_of[r] = dist;
+        gap_of[r] = g;
+        in[r] = active;
+    }
+    std::size_t n_active = 0;
+    for (std::size_t r = 0; r < n; ++r) {  // no branch per row: in-range flags follow no pattern
+        const std::size_t k = begin + r;
+        const bool active = in[r] != 0;
+        c.active_col[k] = active;
+        gap[n_active] = gap_of[r];
+        distance[n_active] = dist_of[r];
+        row[n_active] = std::uint32_t(k);
+        idle[n_idle] = std::uint32_t(k);
+        n_active += active;
+        n_idle += !active & (c.live[k] != 0);  // just left the range: history to forget
+        c.live[k] = active;
+    }
+    return n_active;
+}
+// The history of the packed rows, in from the set's rows row[a] (gather) or
+// back out to them (scatter), in loops of their own: the main loops keep
+// fewer values live, and a model's usual stride (3: a shear force) copies
+// without a loop per row.
+template <std::size_t Stride>
+void gather_history(double* dense, const double* set, const std::uint32_t* row, std::size_t n) {
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t h = 0; h < Stride; ++h) dense[a * Stride + h] = set[row[a] * Stride + h];
+}
+template <std::size_t Stride>
+void scatter_history(double* set, const double* dense, const std::uint32_t* row, std::size_t n) {
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t h = 0; h < Stride; ++h) set[row[a] * Stride + h] = dense[a * Stride + h];
+}
+void gather_history(double* dense, const double* set, const std::uint32_t* row, std::size_t n, std::size_t stride) {
+    if (stride == 3) return gather_history<3>(dense, set, row, n);
+    for (std::size_t a = 0; a < n; ++a)  // a loop, not a memmove call, for a few doubles
+        for (std::size_t h = 0; h < stride; ++h) dense[a * stride + h] = set[row[a] * stride + h];
+}
+void scatter_history(double* set, const double* dense, const std::uint32_t* row, std::size_t n, std::size_t stride) {
+    if (stride == 3) return scatter_history<3>(set, dense, row, n);
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t h = 0; h < stride; ++h) set[row[a] * stride + h] = dense[a * stride + h];
+}
+} // namespace
+
 // Rows [begin, end) of set si, at most one batch: the range test of every
 // candidate (gap and the active flag stay in the set's columns, for every
 // reader), the rows in range listed in `row` with their centre distance
@@ -32,27 +104,20 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
     const std::size_t stride = std::size_t(inst.stride);
     // raw pointers: the byte stores below (flags) may alias anything, so
     // the compiler would otherwise reload every column's address per row
-    const std::int32_t *end1 = s.end1.data(), *end2 = s.end2.data();
-    const double *r1 = s.radius1.data(), *r2 = s.radius2.data(), *history = s.history.data();
-    const Vec* x = bodies.position.data();
-    double* gap_col = s.gap.data();
-    std::uint8_t *active_col = s.active.data(), *live = live_[si].data();
+    const RangeRows c{s.end1.data(), s.end2.data(), s.radius1.data(), s.radius2.data(), s.history.data(),
+                      bodies.position.data(), s.gap.data(), s.active.data(), live_[si].data()};
     std::uint32_t idle[kContactBatch];
-    std::size_t n_active = 0, n_idle = 0;
-    for (std::size_t k = begin; k < end; ++k) {  // no branch per row: in-range flags follow no pattern
-        const double dist = (x[end2[k]] - x[end1[k]]).norm();
-        const double g = dist - r1[k] - r2[k];
-        const bool active = in_range(history, k, dist, g);
-        gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
-        active_col[k] = active;
-        if (gap) gap[n_active] = g;
-        if (distance) distance[n_active] = dist;
-        row[n_active] = std::uint32_t(k);
-        idle[n_idle] = std::uint32_t(k);
-        n_active += active;
-        n_idle += !active & (live[k] != 0);  // just left the range: history to forget
-        live[k] = active;
-    }
+    double unused[kContactBatch];  // where an output the caller does not take goes
+    if (!distance) distance = unused;
+    if (!gap) gap = unused;
+    std::size_t n_idle = 0, n_active;
+    const bool bonds = in_range.persist >= 0;
+    if (in_range.by_distance)
+        n_active = bonds ? test_rows<true, true>(c, in_range, begin, end, row, distance, gap, idle, n_idle)
+                         : test_rows<true, false>(c, in_range, begin, end, row, distance, gap, idle, n_idle);
+    else
+        n_active = bonds ? test_rows<false, true>(c, in_range, begin, end, row, distance, gap, idle, n_idle)
+                         : test_rows<false, false>(c, in_range, begin, end, row, distance, gap, idle, n_idle);
     for (std::size_t r = 0; r < n_idle; ++r)
         for (std::size_t h = 0; h < stride; ++h) s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
     return n_active;
@@ -91,9 +156,9 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         if (masses) { d.mass1[a] = mi; d.mass2[a] = mj; }
         if (eff_mass) d.eff_mass[a] = mi * mj / (mi + mj);
         if (eff_radius) d.eff_radius[a] = ri * rj / (ri + rj);
-        for (std::size_t h = 0; h < stride; ++h) d.history[a * stride + h] = s.history[k * stride + h];  // a loop, not a memmove call, for a few doubles
         exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
     }
+    gather_history(d.history.data(), s.history.data(), d.row, n_active, stride);
     d.count = std::uint32_t(n_active);
     // the outputs a model adds to start from zero (dt limit: no limit); the
     // optional ones only when it writes them
@@ -157,7 +222,6 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     double strain = 0, slip = 0, dashpot = 0, broken = 0;
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
-        for (std::size_t h = 0; h < stride; ++h) s.history[k * stride + h] = d.history[a * stride + h];
         copy3(s.force.data(), k, d.force, a);
         if (!s.packed) {  // a packed set recomputes them on demand (contact_point())
             copy3(s.point.data(), k, d.point, a);
@@ -176,6 +240,7 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
         for (int c = 0; c < 3; ++c) { f1m1[c] -= f2[c]; f1m1[3 + c] += m1[c]; }
         for (int c = 0; c < 3; ++c) { f2m2[c] += f2[c]; f2m2[3 + c] += m2[c]; }
     }
+    scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = 0;
     if (d.count == 0) return;  // no row to report: what the columns hold is not read

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <sstream>
 #include <tuple>
+#include <utility>
 
 namespace plab {
 
@@ -410,16 +411,20 @@ void World::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
 // Bodies [i0, i1): gravity and applied loads, then the chunks' partial
 // sums in chunk order (the same order for any thread count).
 void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
+    // column addresses in locals: Eigen's vector stores may alias anything
     Vec* force = bodies.force.data();
     Vec* moment = bodies.moment.data();
+    const double* mass = bodies.mass.data();
+    const Vec g = gravity;
     if (bodies.has_applied_loads()) {
+        const Vec *applied_f = bodies.applied_force.data(), *applied_m = bodies.applied_moment.data();
         for (std::size_t i = i0; i < i1; ++i) {
-            force[i] = bodies.mass[i] * gravity + bodies.applied_force[i];
-            moment[i] = bodies.applied_moment[i];
+            force[i] = mass[i] * g + applied_f[i];
+            moment[i] = applied_m[i];
         }
     } else {
         for (std::size_t i = i0; i < i1; ++i) {
-            force[i] = bodies.mass[i] * gravity;
+            force[i] = mass[i] * g;
             moment[i] = Vec::Zero();
         }
     }
@@ -452,6 +457,8 @@ bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
     constexpr std::uint32_t end2_bit = 1u << 31;
     Vec* force = bodies.force.data();
     Vec* moment = bodies.moment.data();
+    const Vec *position = bodies.position.data(), *velocity = bodies.velocity.data();
+    const double *local_damping = bodies.local_damping.data(), *viscous_damping = bodies.viscous_damping.data();
     double finite = 0;  // stays 0 unless some value is Inf or NaN (x * 0 is NaN then)
     for (std::size_t i = i0; i < i1; ++i) {
         if (any_accumulation_)  // fields of rates-stage models are summed after that stage
@@ -462,9 +469,9 @@ bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
                 const ModelInstance& owner = *set_owner_[en.set];
                 if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
             }
-        if (bodies.local_damping[i] > 0 || bodies.viscous_damping[i] > 0) damp_body(i, force[i], moment[i], local_work);
+        if (local_damping[i] > 0 || viscous_damping[i] > 0) damp_body(i, force[i], moment[i], local_work);
         if (dim == 2) { force[i].z() = 0; moment[i].x() = 0; moment[i].y() = 0; }
-        finite += (force[i].sum() + moment[i].sum() + bodies.position[i].sum() + bodies.velocity[i].sum()) * 0.0;
+        finite += (force[i].sum() + moment[i].sum() + position[i].sum() + velocity[i].sum()) * 0.0;
     }
     return finite == 0;  // check_finite() finds which body
 }
@@ -481,6 +488,8 @@ bool World::reduce() {
     bool non_finite = false;
     const std::size_t n_blocks = body_blocks();
     block_local_work_.assign(n_blocks, 0.0);  // local damping work per block
+    const double closing_kick = std::exchange(fused_closing_kick_, 0.0);
+    if (closing_kick > 0) prepare_body_blocks();
 #pragma omp parallel for schedule(static) reduction(| : non_finite) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_blocks; ++b) {
         const std::size_t i0 = b * kBodyBlock, i1 = std::min(n, i0 + kBodyBlock);
@@ -488,6 +497,8 @@ bool World::reduce() {
         double work = 0;
         non_finite |= !finish_bodies(i0, i1, work);
         block_local_work_[b] = work;
+        // the step's closing half kick while the block is in cache (advance())
+        if (closing_kick > 0) kick_block_of_bodies(b, closing_kick, true);
     }
     double local_work = 0;
     for (double w : block_local_work_) local_work += w;

@@ -327,10 +327,18 @@ void World::advance() {
     }
     time += dt;
     ++step_count;
-    force_pass();
+    bool post_force = false;
+    for (const auto& p : passes_) post_force |= p.desc->phase == PLAB_PHASE_POST_FORCE;
+    fused_closing_kick_ = post_force ? 0.0 : 0.5 * dt;  // reduce() takes it (and resets it)
+    try {
+        force_pass();
+    } catch (...) {
+        fused_closing_kick_ = 0;  // a later force pass (prepare()) must not kick
+        throw;
+    }
     {
         PhaseTimer t{phase_seconds[ph_motion]};
-        kick(0.5 * dt, true);
+        if (post_force) kick(0.5 * dt, true);
         sum_energies(dt);
     }
     {
@@ -408,11 +416,26 @@ void World::force_pass() {
 
 namespace {
 
+// The body columns a kick reads, their addresses in locals: Eigen's vector
+// stores may alias anything, so GCC would otherwise reload every column's
+// address per body.
+struct KickColumns {
+    Vec *velocity, *angular_velocity;
+    const Vec *force, *moment, *applied_force, *applied_moment;
+    const double *mass, *inertia;
+    explicit KickColumns(Bodies& B)
+        : velocity(B.velocity.data()), angular_velocity(B.angular_velocity.data()), force(B.force.data()),
+          moment(B.moment.data()), applied_force(B.applied_force.data()), applied_moment(B.applied_moment.data()),
+          mass(B.mass.data()), inertia(B.inertia.data()), loads(B.has_applied_loads()) {}
+    bool loads;  // applied loads kept (Bodies: none until one is applied)
+    bool has_applied_loads() const { return loads; }
+};
+
 // What body i adds to the energy sums at its synchronised velocities (PFC's
 // bookkeeping): kinetic energy, and the work over the step dt of its applied
 // loads and, along explicitly fixed DOFs, of the reaction that keeps the
 // velocity.
-inline void add_body_energy(const Bodies& B, std::size_t i, const Vec& v, const Vec& w, double dt,
+inline void add_body_energy(const KickColumns& B, std::size_t i, const Vec& v, const Vec& w, double dt,
                             std::uint8_t explicit_fix, double& kinetic, double& boundary) {
     kinetic += 0.5 * B.mass[i] * v.squaredNorm() + 0.5 * B.inertia[i] * w.squaredNorm();
     if (B.has_applied_loads()) boundary += B.applied_force[i].dot(v) * dt + B.applied_moment[i].dot(w) * dt;
@@ -427,8 +450,9 @@ inline void add_body_energy(const Bodies& B, std::size_t i, const Vec& v, const 
 // with every DOF of their dimension free (2D: x, y and the spin about z),
 // without a branch per component; with Energies, their energy sums too.
 template <int Dim, bool Energies>
-void kick_free_block(Bodies& B, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
+void kick_free_block(Bodies& bodies, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
                      double& kinetic, double& boundary) {
+    const KickColumns B(bodies);
     for (std::size_t i = i0; i < i1; ++i) {
         // on copies, stored whole: the energy sums read them back from
         // registers, not through a store of parts and a wider load
@@ -452,11 +476,13 @@ void kick_free_block(Bodies& B, const double* inv_m, const double* inv_i, double
 }
 
 // The same for bodies that may have fixed DOFs: a fixed component keeps its velocity.
-void kick_block(Bodies& B, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
+void kick_block(Bodies& bodies, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
                 bool energies, double& kinetic, double& boundary) {
-    const std::uint8_t implicit = B.implicit_fixity();
+    const std::uint8_t implicit = bodies.implicit_fixity();
+    const std::uint8_t* fixity = bodies.fixity.data();
+    const KickColumns B(bodies);
     for (std::size_t i = i0; i < i1; ++i) {
-        const std::uint8_t fix = B.fixity[i];
+        const std::uint8_t fix = fixity[i];
         for (int c = 0; c < 3; ++c) {
             if (!(fix & (dof_x << c))) B.velocity[i][c] += h * B.force[i][c] * inv_m[i];
             if (!(fix & (dof_rx << c))) B.angular_velocity[i][c] += h * B.moment[i][c] * inv_i[i];
@@ -550,9 +576,10 @@ void World::body_energies(double dt) {
     block_kinetic_.assign(n_blocks, 0.0);
     block_boundary_.assign(n_blocks, 0.0);
     const std::uint8_t implicit = bodies.implicit_fixity();
+    const KickColumns cols(bodies);
     for (std::size_t b = 0; b < n_blocks; ++b)
         for (std::size_t i = b * kBodyBlock; i < std::min(n, (b + 1) * kBodyBlock); ++i)
-            add_body_energy(bodies, i, bodies.velocity[i], bodies.angular_velocity[i], dt, bodies.fixity[i] & ~implicit,
+            add_body_energy(cols, i, cols.velocity[i], cols.angular_velocity[i], dt, bodies.fixity[i] & ~implicit,
                             block_kinetic_[b], block_boundary_[b]);
 }
 
@@ -585,18 +612,23 @@ void World::drift_block(std::size_t b, double dt, const DriftCorrection& corr) {
     // (no reference positions yet: measured against x itself; finish_drift() knows)
     const bool tracked = position_at_build_.size() == bodies.size();
     const Vec* built = tracked ? position_at_build_.data() : bodies.position.data();
+    // column addresses in locals: Eigen's vector stores may alias anything
+    Vec* position = bodies.position.data();
+    const Vec* velocity = bodies.velocity.data();
+    const double* mass = bodies.mass.data();
+    const std::uint8_t* fixity = bodies.fixity.data();
     double body_work = 0, max2 = 0;
     bool out = false;
     for (std::size_t i = i0; i < i1; ++i) {
-        Vec dx = bodies.velocity[i] * dt;
+        Vec dx = velocity[i] * dt;
         if (corr.on) {
-            const std::uint8_t fix = bodies.fixity[i];
+            const std::uint8_t fix = fixity[i];
             for (int k = 0; k < 3; ++k)
                 if (!(fix & (dof_x << k))) dx[k] += corr.field[k][i] * dt;
         }
-        Vec& x = bodies.position[i];
+        Vec& x = position[i];
         x += dx;
-        body_work += bodies.mass[i] * g.dot(dx);  // exact for a constant force
+        body_work += mass[i] * g.dot(dx);  // exact for a constant force
         max2 = std::max(max2, (x - built[i]).squaredNorm());
         // a NaN fails every comparison (& rather than &&: no branch per comparison)
         out |= !((x.x() >= lo.x()) & (x.x() <= hi.x()) & (x.y() >= lo.y()) & (x.y() <= hi.y()) & (x.z() >= lo.z()) &

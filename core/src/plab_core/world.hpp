@@ -468,6 +468,10 @@ private:
     void prepare_body_blocks();
     void kick_block_of_bodies(std::size_t block, double half_dt, bool closing);
     void kick(double half_dt, bool closing = false);
+    // The closing half kick, when reduce() takes it block by block right
+    // after the block's force sums (no POST_FORCE pass between them): the
+    // block's forces and velocities are still in cache. 0: not fused.
+    double fused_closing_kick_ = 0;
     void kick_and_drift(double dt);
     void body_energies(double dt);
     void drift(double dt);
