@@ -20,6 +20,7 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1:strict_stri
 export LSAN_OPTIONS="suppressions=$PWD/../scripts/lsan.supp"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export OMP_NUM_THREADS=1
+export OMP_WAIT_POLICY=PASSIVE  # the tests that set 2 threads sleep, not spin, beside the others
 # the unit tests; the coarse validation cases (validate_all_quick) and the
 # static cantilever solves (hundreds of thousands of steps on the same bond
 # code the quick bonded tests run) are physics runs that take an hour under
