@@ -233,7 +233,7 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     set.end1.swap(t.e1);
     set.end2.swap(t.e2);
     set.history.swap(t.history);
-    if (lean || n > kLeanRebuildRows) {  // the old rows and the pairs go before the columns come
+    if (lean || n > lean_rebuild_rows) {  // the old rows and the pairs go before the columns come
         t.e1 = {};
         t.e2 = {};
         t.history = {};
@@ -300,7 +300,7 @@ void World::fill_pair_constants(ContactSet& set) const {
 void World::rebuild() {
     std::size_t rows = 0;
     for (const auto& inst : instances_) rows += inst->balls.size() + inst->walls.size();
-    const bool lean = rows > kLeanRebuildRows;
+    const bool lean = rows > lean_rebuild_rows;
     if (lean)  // install_pairs() lays the columns out anew, zeroed: nothing in them is carried over
         for (auto& inst : instances_)
             for (ContactSet* s : {&inst->balls, &inst->walls}) s->release_columns();

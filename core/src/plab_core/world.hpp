@@ -206,6 +206,13 @@ public:
     // state; a step that goes unstable restores it before the RunError
     // leaves step(), so outputs and the caller see the last good state.
     std::uint64_t snapshot_interval = 100;
+    // Above this many candidate rows a rebuild keeps nothing twice: the
+    // columns go before the new lists are built, the scratch after (a big
+    // world rebuilds every hundred steps or so, and the memory matters: 18 MB
+    // of 198 on a settled pile of 1e5 balls; smaller worlds, such as the SPH
+    // scene that rebuilds every few steps, keep their buffers, so the cycle
+    // allocates nothing). Results are the same bits either way.
+    std::size_t lean_rebuild_rows = std::size_t(1) << 18;
     // Called whenever the world has taken its last-good snapshot: whoever
     // keeps state beside the world (a Simulation's outputs) keeps theirs
     // for the same instant.
@@ -387,11 +394,6 @@ private:
         std::vector<double> history;
     };
     RebuildScratch rebuild_scratch_;
-    // Above this many candidate rows a rebuild keeps nothing twice: the
-    // columns go before the new lists are built, the scratch after (a
-    // million balls rebuild rarely, and the memory matters; small worlds
-    // rebuild often and keep their buffers, so the cycle allocates nothing).
-    static constexpr std::size_t kLeanRebuildRows = std::size_t(1) << 20;
     void build_entries();
     void fill_pair_constants(ContactSet& set) const;
     // whether the ball–ball rows of a model go to it packed (force_sweep): no
