@@ -56,9 +56,9 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         if (masses) { d.mass1[a] = mi; d.mass2[a] = mj; }
         if (eff_mass) d.eff_mass[a] = mi * mj / (mi + mj);
         if (eff_radius) d.eff_radius[a] = ri * rj / (ri + rj);
-        for (std::size_t h = 0; h < stride; ++h) d.history[a * stride + h] = s.history[k * stride + h];
         exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
     }
+    gather_history(d.history.data(), s.history.data(), d.row, n_active, stride);
     d.count = std::uint32_t(n_active);
     // only the outputs the host reads start from zero (dt limit: no limit)
     std::fill_n(d.force, 3 * n_active, 0.0);
@@ -76,11 +76,10 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     const std::size_t stride = std::size_t(inst.stride);
     double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
     const std::int32_t lo = ch.lo;
-    double *force = s.force.data(), *dt_limit = s.dt_limit.data(), *history = s.history.data();
+    double *force = s.force.data(), *dt_limit = s.dt_limit.data();
     const bool with_dt_limit = inst.uses(PLAB_IO_DT_LIMIT);  // (the set keeps the column then: ContactSet::keeps)
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
-        for (std::size_t h = 0; h < stride; ++h) history[k * stride + h] = d.history[a * stride + h];
         copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
         if (with_dt_limit) dt_limit[k] = d.dt_limit[a];  // (a per-pair CFL limit: seldom uniform, so no write_back())
         double* f1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
@@ -90,6 +89,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
             f2[c] += d.force[3 * a + c];
         }
     }
+    scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
     // (the batch's energy sums stay zero: force_sweep cleared them)
 }
 

@@ -42,8 +42,7 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
         const std::size_t k = begin + r;
         const double dist = (c.x[c.end2[k]] - c.x[c.end1[k]]).norm();
         const double g = dist - c.r1[k] - c.r2[k];
-        bool active = ByDistance ? dist <= in_range.range : g <= in_range.range;
-        if (Bonds) active |= c.history[k * in_range.stride + std::size_t(in_range.persist)] > 0;
+        const bool active = in_range.in<ByDistance, Bonds>(c.history, k, dist, g);
         c.gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
         dist_of[r] = dist;
         gap_of[r] = g;
@@ -63,30 +62,6 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
         c.live[k] = active;
     }
     return n_active;
-}
-// The history of the packed rows, in from the set's rows row[a] (gather) or
-// back out to them (scatter), in loops of their own: the main loops keep
-// fewer values live, and a model's usual stride (3: a shear force) copies
-// without a loop per row.
-template <std::size_t Stride>
-void gather_history(double* dense, const double* set, const std::uint32_t* row, std::size_t n) {
-    for (std::size_t a = 0; a < n; ++a)
-        for (std::size_t h = 0; h < Stride; ++h) dense[a * Stride + h] = set[row[a] * Stride + h];
-}
-template <std::size_t Stride>
-void scatter_history(double* set, const double* dense, const std::uint32_t* row, std::size_t n) {
-    for (std::size_t a = 0; a < n; ++a)
-        for (std::size_t h = 0; h < Stride; ++h) set[row[a] * Stride + h] = dense[a * Stride + h];
-}
-void gather_history(double* dense, const double* set, const std::uint32_t* row, std::size_t n, std::size_t stride) {
-    if (stride == 3) return gather_history<3>(dense, set, row, n);
-    for (std::size_t a = 0; a < n; ++a)  // a loop, not a memmove call, for a few doubles
-        for (std::size_t h = 0; h < stride; ++h) dense[a * stride + h] = set[row[a] * stride + h];
-}
-void scatter_history(double* set, const double* dense, const std::uint32_t* row, std::size_t n, std::size_t stride) {
-    if (stride == 3) return scatter_history<3>(set, dense, row, n);
-    for (std::size_t a = 0; a < n; ++a)
-        for (std::size_t h = 0; h < stride; ++h) set[row[a] * stride + h] = dense[a * stride + h];
 }
 } // namespace
 

@@ -89,14 +89,46 @@ struct RangeTest {
     explicit RangeTest(const ModelInstance& inst)
         : by_distance(inst.desc->range_kind == PLAB_RANGE_DISTANCE), persist(inst.desc->persist_slot),
           range(inst.range), stride(std::size_t(inst.stride)) {}
+    // The rule with the range kind and whether bonds count fixed at compile
+    // time (range_test_rows()'s candidate loop tests neither per row).
+    template <bool ByDistance, bool Bonds>
+    bool in(const double* history, std::size_t k, double dist, double gap) const {
+        const bool near = ByDistance ? dist <= range : gap <= range;
+        return Bonds ? near | (history[k * stride + std::size_t(persist)] > 0) : near;
+    }
     bool operator()(const double* history, std::size_t k, double dist, double gap) const {
-        const bool bonded = persist >= 0 && history[k * stride + std::size_t(persist)] > 0;
-        return bonded || (by_distance ? dist <= range : gap <= range);
+        if (by_distance) return persist >= 0 ? in<true, true>(history, k, dist, gap) : in<true, false>(history, k, dist, gap);
+        return persist >= 0 ? in<false, true>(history, k, dist, gap) : in<false, false>(history, k, dist, gap);
     }
     bool operator()(const std::vector<double>& history, std::size_t k, double dist, double gap) const {
         return (*this)(history.data(), k, dist, gap);
     }
 };
+
+// The history of packed rows, in from the set's rows row[a] (gather) or back
+// out to them (scatter), in loops of their own: the packers' main loops keep
+// fewer values live, and a model's usual stride (3: a shear force) copies
+// without a loop per row (Stride 0: the stride given).
+template <std::size_t Stride>
+void gather_history_rows(double* dense, const double* set, const std::uint32_t* row, std::size_t n, std::size_t stride) {
+    const std::size_t w = Stride ? Stride : stride;
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t h = 0; h < w; ++h) dense[a * w + h] = set[row[a] * w + h];
+}
+template <std::size_t Stride>
+void scatter_history_rows(double* set, const double* dense, const std::uint32_t* row, std::size_t n, std::size_t stride) {
+    const std::size_t w = Stride ? Stride : stride;
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t h = 0; h < w; ++h) set[row[a] * w + h] = dense[a * w + h];
+}
+inline void gather_history(double* dense, const double* set, const std::uint32_t* row, std::size_t n, std::size_t stride) {
+    if (stride == 3) gather_history_rows<3>(dense, set, row, n, 3);
+    else gather_history_rows<0>(dense, set, row, n, stride);
+}
+inline void scatter_history(double* set, const double* dense, const std::uint32_t* row, std::size_t n, std::size_t stride) {
+    if (stride == 3) scatter_history_rows<3>(set, dense, row, n, 3);
+    else scatter_history_rows<0>(set, dense, row, n, stride);
+}
 
 // The contact geometry of balls i and j at centre distance `dist`, gap `gap`:
 // normal from i to j, contact point in the middle of the overlap, and the
