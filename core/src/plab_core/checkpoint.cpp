@@ -206,17 +206,6 @@ void load_walls(Walls& w, const World& world, CheckpointReader& in) {
 
 // ---- contacts -------------------------------------------------------------
 
-// The columns of a contact set other than ends, keys and history, by name,
-// so a later format can add one and still read this one.
-std::vector<std::pair<const char*, std::vector<double>*>> double_columns(ContactSet& s) {
-    return {{"normal", &s.normal}, {"gap", &s.gap}, {"distance", &s.distance}, {"rel_velocity", &s.rel_velocity},
-            {"rel_angular_velocity", &s.rel_angular_velocity}, {"point", &s.point}, {"radius1", &s.radius1},
-            {"radius2", &s.radius2}, {"mass1", &s.mass1}, {"mass2", &s.mass2}, {"eff_mass", &s.eff_mass},
-            {"eff_radius", &s.eff_radius}, {"force", &s.force}, {"moment1", &s.moment1}, {"moment2", &s.moment2},
-            {"strain", &s.strain}, {"slip", &s.slip}, {"dashpot", &s.dashpot}, {"k_t", &s.k_t}, {"k_r", &s.k_r},
-            {"dt_limit", &s.dt_limit}, {"break_energy", &s.break_energy}};
-}
-
 // The keys are written though the world derives them from the ends
 // (World::row_keys): the file stays readable as before, and a restart checks
 // that its rows name the same bodies.
@@ -236,7 +225,7 @@ void save_set(const World& w, const ModelInstance& inst, const ContactSet& cs, C
         for (std::size_t k = 0; k < s.size(); ++k) col[k] = s.history[k * inst.stride + h];
         out.column(col);
     }
-    const auto cols = double_columns(s);
+    const auto cols = s.double_columns();
     out.u64(cols.size());
     for (const auto& [name, col] : cols) {
         out.str(name);
@@ -270,7 +259,7 @@ void load_set(const ModelInstance& inst, ContactSet& s, const std::vector<int>& 
         if (col.size() != n) in.fail("a history column of model '" + inst.model + "' has the wrong length");
         for (std::size_t k = 0; k < n; ++k) s.history[k * inst.stride + model_slot] = col[k];
     }
-    auto cols = double_columns(s);
+    auto cols = s.double_columns();
     const std::uint64_t n_cols = in.u64();
     for (std::uint64_t c = 0; c < n_cols; ++c) {
         const std::string name = in.str();

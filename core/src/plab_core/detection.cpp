@@ -63,12 +63,19 @@ void ContactSet::resize_columns(std::size_t n, int n_acc) {
         for (auto& a : *acc) fill(a, n, 0.0);
 }
 
+std::vector<std::pair<const char*, std::vector<double>*>> ContactSet::double_columns() {
+    return {{"normal", &normal}, {"gap", &gap}, {"distance", &distance}, {"rel_velocity", &rel_velocity},
+            {"rel_angular_velocity", &rel_angular_velocity}, {"point", &point}, {"radius1", &radius1},
+            {"radius2", &radius2}, {"mass1", &mass1}, {"mass2", &mass2}, {"eff_mass", &eff_mass},
+            {"eff_radius", &eff_radius}, {"force", &force}, {"moment1", &moment1}, {"moment2", &moment2},
+            {"strain", &strain}, {"slip", &slip}, {"dashpot", &dashpot}, {"k_t", &k_t}, {"k_r", &k_r},
+            {"dt_limit", &dt_limit}, {"break_energy", &break_energy}};
+}
+
 void ContactSet::release_columns() {
     for (auto* v : {&active, &interior}) std::vector<std::uint8_t>().swap(*v);
-    for (auto* v : {&normal, &gap, &distance, &rel_velocity, &rel_angular_velocity, &point, &radius1, &radius2, &mass1,
-                    &mass2, &eff_mass, &eff_radius, &force, &moment1, &moment2, &strain, &slip, &dashpot, &k_t, &k_r,
-                    &dt_limit, &break_energy, &batch_energy})
-        std::vector<double>().swap(*v);
+    for (auto& [name, col] : double_columns()) std::vector<double>().swap(*col);
+    std::vector<double>().swap(batch_energy);
     for (auto* acc : {&acc1, &acc2})
         for (auto& a : *acc) std::vector<double>().swap(a);
 }

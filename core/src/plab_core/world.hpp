@@ -56,6 +56,9 @@ struct ContactSet {
     std::size_t size() const { return end1.size(); }
     void resize_columns(std::size_t n, int n_accumulated);
     void release_columns();  // every per-row column but the ends and history, freed
+    // The per-row columns of doubles (all but ends, flags and history), by
+    // name: checkpoints save them by name, release_columns() frees them.
+    std::vector<std::pair<const char*, std::vector<double>*>> double_columns();
 
     // The owning model's io and flags (abi.h; set once, World::add_instance).
     // A packed set does not keep the output columns its model never writes:
