@@ -297,8 +297,7 @@ void World::restore_snapshot() {
     for (auto& inst : instances_)
         for (ContactSet* c : {&inst->balls, &inst->walls}) {
             const SetState& st = s.sets[k++];
-            c->end1 = st.end1; c->end2 = st.end2; c->history = st.history;
-            lay_out_columns(*inst, *c);
+            c->end1 = st.end1; c->end2 = st.end2; c->history = st.history;  // (prepare()'s rebuild lays the columns out)
         }
     const Diagnostic why = stopped;  // prepare() clears it: a run that goes on is running again
     prepare();
