@@ -10,7 +10,6 @@
 #include <cmath>
 #include <sstream>
 #include <tuple>
-#include <utility>
 
 namespace plab {
 
@@ -478,7 +477,7 @@ bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
 
 // Sum contact forces and moments onto bodies, then finish each body, in
 // blocks of bodies. True when a body's state may be non-finite.
-bool World::reduce() {
+bool World::reduce(double closing_kick) {
     const std::size_t n = bodies.size();
     for (auto& inst : instances_)
         if (!inst->desc->rates_stage)
@@ -488,7 +487,6 @@ bool World::reduce() {
     bool non_finite = false;
     const std::size_t n_blocks = body_blocks();
     block_local_work_.assign(n_blocks, 0.0);  // local damping work per block
-    const double closing_kick = std::exchange(fused_closing_kick_, 0.0);
     if (closing_kick > 0) prepare_body_blocks();
 #pragma omp parallel for schedule(static) reduction(| : non_finite) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_blocks; ++b) {

@@ -4,6 +4,7 @@
 
 #include "error.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -140,6 +141,10 @@ void World::add_pass(const std::string& name, std::vector<double> props) {
            (it->desc->phase < d->phase || (it->desc->phase == d->phase && it->desc->stage <= d->stage)))
         ++it;
     passes_.insert(it, std::move(p));
+}
+
+bool World::has_passes(std::uint32_t phase) const {
+    return std::any_of(passes_.begin(), passes_.end(), [phase](const PassInstance& p) { return p.desc->phase == phase; });
 }
 
 void World::run_passes(std::uint32_t phase) {
@@ -326,15 +331,8 @@ void World::advance() {
     }
     time += dt;
     ++step_count;
-    bool post_force = false;
-    for (const auto& p : passes_) post_force |= p.desc->phase == PLAB_PHASE_POST_FORCE;
-    fused_closing_kick_ = post_force ? 0.0 : 0.5 * dt;  // reduce() takes it (and resets it)
-    try {
-        force_pass();
-    } catch (...) {
-        fused_closing_kick_ = 0;  // a later force pass (prepare()) must not kick
-        throw;
-    }
+    const bool post_force = has_passes(PLAB_PHASE_POST_FORCE);
+    force_pass(post_force ? 0.0 : 0.5 * dt);  // the closing half kick inside reduce(), unless a pass comes between
     {
         PhaseTimer t{phase_seconds[ph_motion]};
         if (post_force) kick(0.5 * dt, true);
@@ -350,7 +348,7 @@ void World::advance() {
     }
 }
 
-void World::force_pass() {
+void World::force_pass(double closing_kick) {
     {
         PhaseTimer t{phase_seconds[ph_pre_force]};
         run_passes(PLAB_PHASE_PRE_FORCE);
@@ -405,7 +403,7 @@ void World::force_pass() {
     }
     {
         PhaseTimer t{phase_seconds[ph_reduction]};
-        if (reduce()) check_finite();
+        if (reduce(closing_kick)) check_finite();
     }
     {
         PhaseTimer t{phase_seconds[ph_post_force]};
@@ -534,10 +532,8 @@ void World::kick_block_of_bodies(std::size_t b, double h, bool closing) {
 void World::kick_and_drift(double dt) {
     const std::size_t n = bodies.size(), n_blocks = body_blocks();
     prepare_body_blocks();
-    bool pre_drift = false;
-    for (const auto& p : passes_) pre_drift |= p.desc->phase == PLAB_PHASE_PRE_DRIFT;
     const DriftCorrection corr = drift_correction();
-    if (pre_drift || corr.on) {
+    if (has_passes(PLAB_PHASE_PRE_DRIFT) || corr.on) {
         kick(0.5 * dt);
         run_passes(PLAB_PHASE_PRE_DRIFT);
         drift(dt);

@@ -440,12 +440,17 @@ private:
     void record_breaks(ModelInstance& inst, ContactSet& set);
     void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
                            std::vector<std::array<std::int32_t, 2>>& pairs) const;
-    void force_pass();
+    // closing_kick > 0: reduce() takes the step's closing half kick of that
+    // length block by block, right after the block's force sums, while its
+    // forces and velocities are in cache (advance(), when no POST_FORCE pass
+    // runs between them)
+    void force_pass(double closing_kick = 0);
     void damp_body(std::size_t body, Vec& force, Vec& moment, double& local_work) const;
     void add_chunk_sums(std::size_t first_body, std::size_t end_body);
     bool finish_bodies(std::size_t first_body, std::size_t end_body, double& local_work);
-    bool reduce();  // true: a body's state may be non-finite (check_finite() looks)
+    bool reduce(double closing_kick);  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
+    bool has_passes(std::uint32_t phase) const;
     // The per-body loops work on fixed blocks of bodies; a sum over the
     // bodies is taken per block and the blocks added in order, so it does
     // not depend on the thread count.
@@ -473,10 +478,6 @@ private:
     void prepare_body_blocks();
     void kick_block_of_bodies(std::size_t block, double half_dt, bool closing);
     void kick(double half_dt, bool closing = false);
-    // The closing half kick, when reduce() takes it block by block right
-    // after the block's force sums (no POST_FORCE pass between them): the
-    // block's forces and velocities are still in cache. 0: not fused.
-    double fused_closing_kick_ = 0;
     void kick_and_drift(double dt);
     void body_energies(double dt);
     void drift(double dt);
