@@ -95,12 +95,22 @@ void Simulation::set_checkpoint_every(double seconds) {
     next_checkpoint_time_ = world_->time + seconds;
 }
 
-void Simulation::save_checkpoint(const std::string& path) const {
+void Simulation::save_checkpoint(const std::string& path) const { write_checkpoint(path, run_state_bytes()); }
+
+// A checkpoint file: plug-ins and scene, the world as it is now, and the
+// run's own sections given as bytes (now, or kept from the last good state).
+void Simulation::write_checkpoint(const std::string& path, const std::string& run_state) const {
     CheckpointWriter out = CheckpointWriter::to_file(path);
     write_plugins_and_scene(out);
     WorldCheckpoint::save(*world_, out);
-    write_run_state(out);
+    out.append(run_state);
     out.commit();
+}
+
+std::string Simulation::run_state_bytes() const {
+    CheckpointWriter out;
+    write_run_state(out);
+    return out.take();
 }
 
 std::string Simulation::last_good_path() const { return (fs::path(out_dir_) / "last_good.plab").string(); }
@@ -113,18 +123,12 @@ std::string Simulation::last_good_path() const { return (fs::path(out_dir_) / "l
 // world is held in memory.
 void Simulation::keep_last_good() {
     if (out_dir_.empty() || world_->snapshot_interval == 0) return;
-    CheckpointWriter out{CheckpointWriter::Headless{}};
-    write_run_state(out);
-    last_good_run_state_ = out.take();
+    last_good_run_state_ = run_state_bytes();
 }
 
 std::string Simulation::write_last_good() const {
     if (!world_->at_last_good() || last_good_run_state_.empty()) return "";
-    CheckpointWriter out = CheckpointWriter::to_file(last_good_path());
-    write_plugins_and_scene(out);
-    WorldCheckpoint::save(*world_, out);
-    out.append(last_good_run_state_);
-    out.commit();
+    write_checkpoint(last_good_path(), last_good_run_state_);
     return last_good_path();
 }
 

@@ -142,6 +142,8 @@ private:
     std::string last_good_run_state_;
     void write_plugins_and_scene(CheckpointWriter& out) const;
     void write_run_state(CheckpointWriter& out) const;
+    std::string run_state_bytes() const;
+    void write_checkpoint(const std::string& path, const std::string& run_state) const;
     std::string last_good_path() const;
     void keep_last_good();
     std::string write_last_good() const;  // its path, or "" when none is kept

@@ -22,13 +22,6 @@ constexpr char kMagic[8] = {'P', 'L', 'A', 'B', 'C', 'K', 'P', 'T'};
 constexpr std::uint32_t kEndianMarker = 0x01020304u;
 } // namespace
 
-CheckpointWriter::CheckpointWriter(std::string buffer) : data_(std::move(buffer)) {
-    data_.clear();
-    raw(kMagic, sizeof kMagic);
-    u32(kCheckpointFormat);
-    u32(kEndianMarker);
-}
-
 CheckpointReader::CheckpointReader(const std::string& path) : path_(path) {
     std::ifstream f(path, std::ios::binary);
     if (!f) throw CheckpointError("cannot open checkpoint " + path);
@@ -91,12 +84,13 @@ void CheckpointReader::section(const std::string& name) {
 CheckpointWriter CheckpointWriter::to_file(const std::string& path) {
     const fs::path p(path);
     if (p.has_parent_path()) fs::create_directories(p.parent_path());
-    std::string header = CheckpointWriter().take();
-    CheckpointWriter out{Headless{}};
+    CheckpointWriter out;
     out.path_ = path;
     out.file_ = std::make_unique<std::ofstream>(path + ".tmp", std::ios::binary);
     if (!*out.file_) throw CheckpointError("cannot write checkpoint " + path + ".tmp");
-    out.append(header);
+    out.raw(kMagic, sizeof kMagic);
+    out.u32(kCheckpointFormat);
+    out.u32(kEndianMarker);
     return out;
 }
 
@@ -105,19 +99,6 @@ void CheckpointWriter::commit() {
     if (!*file_) throw CheckpointError("cannot write checkpoint " + path_ + ".tmp");
     file_.reset();
     fs::rename(path_ + ".tmp", path_);
-}
-
-void write_file_atomically(const std::string& path, const std::string& bytes) {
-    const fs::path p(path);
-    if (p.has_parent_path()) fs::create_directories(p.parent_path());
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary);
-        f.write(bytes.data(), std::streamsize(bytes.size()));
-        f.flush();
-        if (!f) throw CheckpointError("cannot write checkpoint " + tmp);
-    }
-    fs::rename(tmp, p);
 }
 
 namespace {

@@ -37,15 +37,13 @@ public:
 
 class CheckpointWriter {
 public:
-    // writes the header; into `buffer`'s memory when given one (a checkpoint
-    // kept in memory is rewritten in place, without faulting new pages in)
-    explicit CheckpointWriter(std::string buffer = {});
-    // no header: sections to be appended to another writer's (append())
-    struct Headless {};
-    explicit CheckpointWriter(Headless) {}
-    // Streams the checkpoint to `path`.tmp instead of holding it in memory
-    // (a million-ball checkpoint is hundreds of MB); commit() renames it to
-    // `path`, so a run killed while writing leaves the previous file.
+    // Sections in memory, without the file header: a part of a checkpoint
+    // to append() to a file's writer later.
+    CheckpointWriter() = default;
+    // A checkpoint file: the header, then sections streamed to `path`.tmp
+    // instead of held in memory (a million-ball checkpoint is hundreds of
+    // MB); commit() renames it to `path`, so a run killed while writing
+    // leaves the previous file.
     static CheckpointWriter to_file(const std::string& path);
     void commit();
     void append(const std::string& bytes) { raw(bytes.data(), bytes.size()); }
@@ -113,10 +111,6 @@ private:
     std::size_t pos_ = 0;
     std::uint32_t format_ = 0;
 };
-
-// Writes bytes to `path` through a temporary name and a rename, so a killed
-// run never leaves half a checkpoint.
-void write_file_atomically(const std::string& path, const std::string& bytes);
 
 // The World's complete state (a friend of World).
 struct WorldCheckpoint {
