@@ -57,14 +57,15 @@ struct Linear {
         double strain = 0;
         c.set_force(plab::linear_law::apply(law_, c, shear_force_x, strain));
         c.set_strain_energy(strain);
-        c.set_stiffness(std::max(law_.kn, law_.ks));
+        c.set_stiffness(stiffness());
     }
     // law() on every row of a batch of active rows, as one vectorised loop
     void law_rows(const plab_contact_batch& b, std::size_t k0, std::size_t k1) const {
-        linear_rows(law_, b, k0, k1, shear_force_x, std::max(law_.kn, law_.ks));
+        linear_rows(law_, b, k0, k1, shear_force_x, stiffness());
     }
 
 private:
+    double stiffness() const { return std::max(law_.kn, law_.ks); }  // for the stable step (timestep_rule)
     plab::linear_law::Params law_;
 };
 

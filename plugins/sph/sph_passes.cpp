@@ -360,11 +360,14 @@ struct SphDensitySummation {
         const plab::sph::Kernel W{kind_, int(v.dim), h_};
         const double w0 = W.value(0);
         const std::size_t n = v.body_count, width = stride() * n;
-        chunk_contacts_ = std::max(kMinChunkContacts, (std::size_t(v.contact_count) + kMaxChunks - 1) / kMaxChunks);
-        const std::size_t n_chunks = (std::size_t(v.contact_count) + chunk_contacts_ - 1) / chunk_contacts_;
+        const std::size_t per_chunk =
+            std::max(kMinChunkContacts, (std::size_t(v.contact_count) + kMaxChunks - 1) / kMaxChunks);
+        const std::size_t n_chunks = (std::size_t(v.contact_count) + per_chunk - 1) / per_chunk;
         partial_.resize(n_chunks * width);
 #pragma omp parallel for schedule(dynamic) if (n_chunks > 1)
-        for (std::size_t c = 0; c < n_chunks; ++c) sum_chunk(v, W, c, partial_.data() + c * width);
+        for (std::size_t c = 0; c < n_chunks; ++c)
+            sum_chunk(v, W, c * per_chunk, std::min<std::size_t>(v.contact_count, (c + 1) * per_chunk),
+                      partial_.data() + c * width);
         double* rho = v.fields[density];
 #pragma omp parallel for schedule(static) if (n >= 4096)
         for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
@@ -387,20 +390,19 @@ private:
     // contact count only). At most kMaxChunks chunks, so the partial sums
     // take at most 16 (32 normalised) doubles per body.
     static constexpr std::size_t kMinChunkContacts = 16384, kMaxChunks = 16;
-    std::size_t chunk_contacts_ = kMinChunkContacts;
     std::size_t stride() const { return normalised_ ? 2 : 1; }  // mass sum, then volume sum
 
-    // eqs. 8–9 over chunk c's pairs within the support: m_j W_ij (and
+    // eqs. 8–9 over the chunk of contacts [k0, k1), pairs within the support: m_j W_ij (and
     // (m_j/rho_j) W_ij) to end i, and the same with i and j swapped to end j;
     // body i's sums at sum[stride() i]
-    void sum_chunk(const plab_pass_view& v, const plab::sph::Kernel& W, std::size_t c, double* sum) const {
+    void sum_chunk(const plab_pass_view& v, const plab::sph::Kernel& W, std::size_t k0, std::size_t k1,
+                   double* sum) const {
         const std::size_t stride = this->stride();
         std::fill_n(sum, stride * v.body_count, 0.0);
         const double support2 = W.support() * W.support();
         // W.value(r) with its normalisation taken once, not per pair (same arithmetic)
         const double norm = plab::sph::normalisation(kind_, int(v.dim), h_);
         const double* rho = v.fields[density];
-        const std::size_t k0 = c * chunk_contacts_, k1 = std::min<std::size_t>(v.contact_count, k0 + chunk_contacts_);
         for (std::size_t k = k0; k < k1; ++k) {
             if (v.contact_end2_is_wall[k]) continue;
             const int32_t i = v.contact_end1[k], j = v.contact_end2[k];

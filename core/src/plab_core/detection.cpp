@@ -397,7 +397,7 @@ void World::list_chunk_bodies(Chunk& ch) {
 }
 
 // Chunks of the deterministic reduction (world.hpp): about eight batches
-// each, so that two threads share a set evenly, at most 64 per set.
+// each, so that two threads share a set evenly, at most 16 per set (below).
 void World::build_chunks() {
     // At most 16 chunks per set: enough to share among the threads, and a
     // chunk's partial array spans its bodies plus the reach of its rows'

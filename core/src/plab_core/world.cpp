@@ -425,7 +425,6 @@ struct KickColumns {
           moment(B.moment.data()), applied_force(B.applied_force.data()), applied_moment(B.applied_moment.data()),
           mass(B.mass.data()), inertia(B.inertia.data()), loads(B.has_applied_loads()) {}
     bool loads;  // applied loads kept (Bodies: none until one is applied)
-    bool has_applied_loads() const { return loads; }
 };
 
 // What body i adds to the energy sums at its synchronised velocities (PFC's
@@ -435,7 +434,7 @@ struct KickColumns {
 inline void add_body_energy(const KickColumns& B, std::size_t i, const Vec& v, const Vec& w, double dt,
                             std::uint8_t explicit_fix, double& kinetic, double& boundary) {
     kinetic += 0.5 * B.mass[i] * v.squaredNorm() + 0.5 * B.inertia[i] * w.squaredNorm();
-    if (B.has_applied_loads()) boundary += B.applied_force[i].dot(v) * dt + B.applied_moment[i].dot(w) * dt;
+    if (B.loads) boundary += B.applied_force[i].dot(v) * dt + B.applied_moment[i].dot(w) * dt;
     if (explicit_fix)
         for (int c = 0; c < 3; ++c) {
             if (explicit_fix & (dof_x << c)) boundary -= B.force[i][c] * v[c] * dt;
