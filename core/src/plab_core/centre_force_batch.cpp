@@ -34,9 +34,7 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     // only the optional inputs the model reads (abi.h, PLAB_IO_*): `sph`
     // reads the masses, not the effective mass and radius (two divisions)
     d.poison_unread(inst);
-    const bool spin = inst.uses(PLAB_IO_REL_ANGULAR_VELOCITY), radii = inst.uses(PLAB_IO_RADII),
-               masses = inst.uses(PLAB_IO_MASSES), eff_mass = inst.uses(PLAB_IO_EFF_MASS),
-               eff_radius = inst.uses(PLAB_IO_EFF_RADIUS);
+    const OptionalInputs optional(inst);
     bool exceeded = false;
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];
@@ -51,11 +49,7 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         d.end2[a] = j;
         put(d.normal, a, normal);  // (no contact point: readers recompute it, World::contact_point)
         put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
-        if (spin) put(d.rel_angular_velocity, a, Vec::Zero());
-        if (radii) { d.radius1[a] = ri; d.radius2[a] = rj; }
-        if (masses) { d.mass1[a] = mi; d.mass2[a] = mj; }
-        if (eff_mass) d.eff_mass[a] = mi * mj / (mi + mj);
-        if (eff_radius) d.eff_radius[a] = ri * rj / (ri + rj);
+        optional.put_row(d, a, Vec::Zero(), ri, rj, mi, mj);
         exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
     }
     gather_history(d.history.data(), s.history.data(), d.row, n_active, stride);

@@ -109,9 +109,7 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
     const auto& B = bodies;
     // only the optional inputs the model reads (abi.h, PLAB_IO_*)
     d.poison_unread(inst);
-    const bool spin = inst.uses(PLAB_IO_REL_ANGULAR_VELOCITY), radii = inst.uses(PLAB_IO_RADII),
-               masses = inst.uses(PLAB_IO_MASSES), eff_mass = inst.uses(PLAB_IO_EFF_MASS),
-               eff_radius = inst.uses(PLAB_IO_EFF_RADIUS);
+    const OptionalInputs optional(inst);
     bool exceeded = false;
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];
@@ -123,14 +121,8 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         put(d.normal, a, p.normal);
         put(d.point, a, p.point);
         put(d.rel_velocity, a, p.rel_velocity);
-        if (spin) put(d.rel_angular_velocity, a, p.rel_angular_velocity);
-        if (radii) { d.radius1[a] = ri; d.radius2[a] = rj; }
-        // masses from the bodies (in cache) rather than the set's columns,
-        // with fill_pair_constants()'s arithmetic
-        const double mi = B.mass[i], mj = B.mass[j];
-        if (masses) { d.mass1[a] = mi; d.mass2[a] = mj; }
-        if (eff_mass) d.eff_mass[a] = mi * mj / (mi + mj);
-        if (eff_radius) d.eff_radius[a] = ri * rj / (ri + rj);
+        // masses from the bodies (in cache) rather than the set's columns
+        optional.put_row(d, a, p.rel_angular_velocity, ri, rj, B.mass[i], B.mass[j]);
         exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
     }
     gather_history(d.history.data(), s.history.data(), d.row, n_active, stride);

@@ -79,6 +79,24 @@ inline void copy3(double* to, std::size_t k, const double* from, std::size_t a) 
     to[3 * k] = from[3 * a]; to[3 * k + 1] = from[3 * a + 1]; to[3 * k + 2] = from[3 * a + 2];
 }
 
+// The optional inputs of a packed row that its model reads (abi.h,
+// PLAB_IO_*; DenseBatch::poison_unread() fills the others with NaN), written
+// by both packers with fill_pair_constants()'s arithmetic.
+struct OptionalInputs {
+    bool spin, radii, masses, eff_mass, eff_radius;
+    explicit OptionalInputs(const ModelInstance& inst)
+        : spin(inst.uses(PLAB_IO_REL_ANGULAR_VELOCITY)), radii(inst.uses(PLAB_IO_RADII)),
+          masses(inst.uses(PLAB_IO_MASSES)), eff_mass(inst.uses(PLAB_IO_EFF_MASS)),
+          eff_radius(inst.uses(PLAB_IO_EFF_RADIUS)) {}
+    void put_row(DenseBatch& d, std::size_t a, const Vec& rel_spin, double ri, double rj, double mi, double mj) const {
+        if (spin) put(d.rel_angular_velocity, a, rel_spin);
+        if (radii) { d.radius1[a] = ri; d.radius2[a] = rj; }
+        if (masses) { d.mass1[a] = mi; d.mass2[a] = mj; }
+        if (eff_mass) d.eff_mass[a] = mi * mj / (mi + mj);
+        if (eff_radius) d.eff_radius[a] = ri * rj / (ri + rj);
+    }
+};
+
 // Whether a ball–ball candidate is in its model's range: bonded rows always
 // are; otherwise the gap or the centre distance, as the model declares.
 struct RangeTest {
