@@ -14,13 +14,10 @@ import argparse
 import json
 import os
 import re
-import sys
 import tempfile
 
+import make_peer_data  # (this script's folder is on the module path)
 from run_peers import HERE, ROOT, run_measured
-
-sys.path.insert(0, HERE)
-import make_peer_data  # noqa: E402
 
 
 def plab_scene(lateral, steps):
