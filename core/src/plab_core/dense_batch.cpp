@@ -119,7 +119,9 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         d.end1[a] = i;
         d.end2[a] = j;
         put(d.normal, a, p.normal);
-        put(d.point, a, p.point);
+        if (!s.packed) put(d.point, a, p.point);
+        put(d.arm1, a, p.arm1);
+        put(d.arm2, a, p.arm2);
         put(d.rel_velocity, a, p.rel_velocity);
         // masses from the bodies (in cache) rather than the set's columns
         optional.put_row(d, a, p.rel_angular_velocity, ri, rj, B.mass[i], B.mass[j]);
@@ -198,9 +200,9 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
         slip += d.slip[a];
         dashpot += d.dashpot[a];
         if (breaks) broken += d.break_energy[a];
-        const Vec f2(&d.force[3 * a]), point(&d.point[3 * a]);
-        Vec m1 = (point - B.position[d.end1[a]]).cross(-f2);
-        Vec m2 = (point - B.position[d.end2[a]]).cross(f2);
+        const Vec f2(&d.force[3 * a]);
+        Vec m1 = Vec(&d.arm1[3 * a]).cross(-f2);
+        Vec m2 = Vec(&d.arm2[3 * a]).cross(f2);
         if (pure_moments) { m1 += Vec(&d.moment1[3 * a]); m2 += Vec(&d.moment2[3 * a]); }
         double* f1m1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
         double* f2m2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);

@@ -24,7 +24,8 @@ struct DenseBatch {
     // inputs
     double normal[3 * N], gap[N], distance[N], rel_velocity[3 * N], rel_angular_velocity[3 * N];
     double radius1[N], radius2[N], mass1[N], mass2[N], eff_mass[N], eff_radius[N];
-    double point[3 * N];  // contact point, for the moments r x F and the readers
+    double point[3 * N];  // contact point, for the readers of a set that is not packed
+    double arm1[3 * N], arm2[3 * N];  // point - x_i, point - x_j: the moments r x F, without a second gather of x
     std::vector<double> history;  // count x stride, copied in and back
     // outputs, zeroed for the packed rows only
     double force[3 * N], moment1[3 * N], moment2[3 * N];
@@ -153,6 +154,7 @@ inline void scatter_history(double* set, const double* dense, const std::uint32_
 // velocities of j relative to i at that point.
 struct PairKinematics {
     Vec normal, point, rel_velocity, rel_angular_velocity;
+    Vec arm1, arm2;  // point - x_i and point - x_j: the lever arms of r x F
 };
 // The unit vector from xi to xj at centre distance dist: one division, not
 // three (every ball–ball path takes it from here, so all give the same bits).
@@ -170,8 +172,10 @@ inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std:
     PairKinematics p;
     p.normal = centre_normal(xi, B.position[j], dist);
     p.point = ball_contact_point(xi, p.normal, ri, gap);
-    const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(p.point - B.position[j]);
-    const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(p.point - xi);
+    p.arm1 = p.point - xi;
+    p.arm2 = p.point - B.position[j];
+    const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(p.arm2);
+    const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(p.arm1);
     p.rel_velocity = vj - vi;
     p.rel_angular_velocity = B.angular_velocity[j] - B.angular_velocity[i];
     return p;
