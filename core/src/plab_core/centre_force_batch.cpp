@@ -29,7 +29,7 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         std::copy_n(marked->row.data() + begin, n_active, d.row);
         std::copy_n(marked->distance.data() + begin, n_active, d.distance);
     } else {
-        n_active = range_test_rows(inst, si, begin, end, d.row, d.distance, nullptr);  // (gap: below)
+        n_active = range_test_rows(inst, si, begin, end, d.row, d.distance);  // (gap: below)
     }
     // only the optional inputs the model reads (abi.h, PLAB_IO_*): `sph`
     // reads the masses, not the effective mass and radius (two divisions)

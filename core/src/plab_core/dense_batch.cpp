@@ -34,9 +34,9 @@ struct RangeRows {
 // wait for each row's square root: the rows no longer overlapped.
 template <bool ByDistance, bool Bonds>
 std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t begin, std::size_t end,
-                      std::uint32_t* row, double* distance, double* gap, std::uint32_t* idle, std::size_t& n_idle) {
+                      std::uint32_t* row, double* distance, std::uint32_t* idle, std::size_t& n_idle) {
     const std::size_t n = end - begin;  // at most kContactBatch
-    double dist_of[kContactBatch], gap_of[kContactBatch];
+    double dist_of[kContactBatch];
     std::uint8_t in[kContactBatch];
     for (std::size_t r = 0; r < n; ++r) {
         const std::size_t k = begin + r;
@@ -45,7 +45,6 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
         const bool active = in_range.in<ByDistance, Bonds>(c.history, k, dist, g);
         c.gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
         dist_of[r] = dist;
-        gap_of[r] = g;
         in[r] = active;
     }
     std::size_t n_active = 0;
@@ -53,7 +52,6 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
         const std::size_t k = begin + r;
         const bool active = in[r] != 0;
         c.active_col[k] = active;
-        gap[n_active] = gap_of[r];
         distance[n_active] = dist_of[r];
         row[n_active] = std::uint32_t(k);
         idle[n_idle] = std::uint32_t(k);
@@ -68,12 +66,12 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
 // Rows [begin, end) of set si, at most one batch: the range test of every
 // candidate (gap and the active flag stay in the set's columns, for every
 // reader), the rows in range listed in `row` with their centre distance
-// (`distance`) and gap (`gap`) where those are given, and the history of
+// (`distance`, where given; the gap is distance - r1 - r2), and the history of
 // rows that left the range back to its declared defaults (a separated
 // contact is forgotten, as the adapter's batch loop did; a row that stays
 // out of range keeps them). Returns how many rows are in range.
 std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
-                                   std::uint32_t* row, double* distance, double* gap) {
+                                   std::uint32_t* row, double* distance) {
     ContactSet& s = *sets_[si];
     const RangeTest in_range(inst);
     const std::size_t stride = std::size_t(inst.stride);
@@ -84,15 +82,14 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
     std::uint32_t idle[kContactBatch];
     double unused[kContactBatch];  // where an output the caller does not take goes
     if (!distance) distance = unused;
-    if (!gap) gap = unused;
     std::size_t n_idle = 0, n_active;
     const bool bonds = in_range.persist >= 0;
     if (in_range.by_distance)
-        n_active = bonds ? test_rows<true, true>(c, in_range, begin, end, row, distance, gap, idle, n_idle)
-                         : test_rows<true, false>(c, in_range, begin, end, row, distance, gap, idle, n_idle);
+        n_active = bonds ? test_rows<true, true>(c, in_range, begin, end, row, distance, idle, n_idle)
+                         : test_rows<true, false>(c, in_range, begin, end, row, distance, idle, n_idle);
     else
-        n_active = bonds ? test_rows<false, true>(c, in_range, begin, end, row, distance, gap, idle, n_idle)
-                         : test_rows<false, false>(c, in_range, begin, end, row, distance, gap, idle, n_idle);
+        n_active = bonds ? test_rows<false, true>(c, in_range, begin, end, row, distance, idle, n_idle)
+                         : test_rows<false, false>(c, in_range, begin, end, row, distance, idle, n_idle);
     for (std::size_t r = 0; r < n_idle; ++r)
         for (std::size_t h = 0; h < stride; ++h) s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
     return n_active;
@@ -103,7 +100,7 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
 // max_overlap.
 bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                            DenseBatch& d) {
-    const std::size_t n_active = range_test_rows(inst, si, begin, end, d.row, d.distance, d.gap);
+    const std::size_t n_active = range_test_rows(inst, si, begin, end, d.row, d.distance);
     const ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);
     const auto& B = bodies;
@@ -114,8 +111,10 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];
         const std::int32_t i = s.end1[k], j = s.end2[k];
-        const double ri = s.radius1[k], rj = s.radius2[k], gap = d.gap[a];
-        const PairKinematics p = ball_pair_kinematics(B, i, j, ri, d.distance[a], gap);
+        const double ri = s.radius1[k], rj = s.radius2[k], dist = d.distance[a];
+        const double gap = dist - ri - rj;  // the range test's arithmetic
+        d.gap[a] = gap;
+        const PairKinematics p = ball_pair_kinematics(B, i, j, ri, dist, gap);
         d.end1[a] = i;
         d.end2[a] = j;
         put(d.normal, a, p.normal);
@@ -183,7 +182,6 @@ int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double d
 void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
                         const Chunk& ch) {
     ContactSet& s = *sets_[si];
-    const auto& B = bodies;
     const std::size_t stride = std::size_t(inst.stride);
     double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
     const std::int32_t lo = ch.lo;

@@ -55,7 +55,7 @@ void World::mark_set_in_range(std::uint32_t si, bool list) {
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::size_t k0 = b * kContactBatch, k1 = std::min(n, k0 + kContactBatch);
         r.count[b] = std::uint32_t(range_test_rows(inst, si, k0, k1, r.row.data() + k0,
-                                                   centre ? r.distance.data() + k0 : nullptr, nullptr));
+                                                   centre ? r.distance.data() + k0 : nullptr));
     }
     r.listed = centre;
     if (list) append_pass_contacts(si);

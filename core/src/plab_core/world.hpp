@@ -411,7 +411,7 @@ private:
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     std::size_t range_test_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin,
-                                std::size_t end, std::uint32_t* row, double* distance, double* gap);
+                                std::size_t end, std::uint32_t* row, double* distance);
     bool pack_ball_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end,
                         DenseBatch& d);
     void unpack_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
