@@ -458,7 +458,10 @@ bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
     Vec* moment = bodies.moment.data();
     const Vec *position = bodies.position.data(), *velocity = bodies.velocity.data();
     const double *local_damping = bodies.local_damping.data(), *viscous_damping = bodies.viscous_damping.data();
-    double finite = 0;  // stays 0 unless some value is Inf or NaN (x * 0 is NaN then)
+    // set when a sum of the body's values is Inf or NaN (so is the sum then;
+    // an overflow of finite values too is caught, check_finite() tells):
+    // an OR, not a running sum, so that no body waits for the previous one
+    bool non_finite = false;
     for (std::size_t i = i0; i < i1; ++i) {
         if (any_accumulation_)  // fields of rates-stage models are summed after that stage
             for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
@@ -470,9 +473,9 @@ bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
             }
         if (local_damping[i] > 0 || viscous_damping[i] > 0) damp_body(i, force[i], moment[i], local_work);
         if (dim == 2) { force[i].z() = 0; moment[i].x() = 0; moment[i].y() = 0; }
-        finite += (force[i].sum() + moment[i].sum() + position[i].sum() + velocity[i].sum()) * 0.0;
+        non_finite |= !(std::fabs(force[i].sum() + moment[i].sum() + position[i].sum() + velocity[i].sum()) < kInf);
     }
-    return finite == 0;  // check_finite() finds which body
+    return !non_finite;  // check_finite() finds which body
 }
 
 // Sum contact forces and moments onto bodies, then finish each body, in
