@@ -15,9 +15,13 @@
 // `sph_density_integration`, `sph_eos` and `sph_wall_pressure` (phase
 // RATES_DONE) turn it into density and pressure before the force stage.
 //
+// The force stage is sph_law.hpp's pair_force(), a function of values that
+// law() calls for one contact and law_rows() in a vectorised loop over a
+// batch (the host's packed batches).
+//
 // Conventions: n is the unit normal from end 1 to end 2, x_2 - x_1 = r n,
 // v_rel = v_2 - v_1; dW/dr <= 0 and ∇_2 W_21 = dW/dr n = -∇_1 W_12.
-#include "sph_kernels.hpp"
+#include "sph_law.hpp"
 
 #include <plab/contact_model.hpp>
 
@@ -28,10 +32,57 @@ namespace {
 
 using plab::Contact;
 using plab::Vec3;
-using plab::sph::Kernel;
 using plab::sph::KernelKind;
+using plab::sph::PairForce;
+using plab::sph::Viscosity;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+
+// The body fields the model reads (Sph::fields_read, in this order).
+enum Field : int { density, pressure, wall_dvx, wall_dvy, wall_dvz };
+
+// pair_force() on rows [k0, k1) of a batch of ball–ball pairs in the force
+// stage: one loop over the rows' columns, the fields of both ends gathered by
+// body index. (restrict parameters, not locals: GCC proves the columns
+// apart only so; the fields are only read, so they may share storage.)
+template <KernelKind K, Viscosity V, bool Anticlump>
+[[gnu::always_inline]] inline void pair_forces(const plab::sph::LawParams& p, int dim3, std::size_t k0, std::size_t k1,
+                                               const int32_t* __restrict end1, const int32_t* __restrict end2,
+                                               const double* __restrict normal, const double* __restrict rel_velocity,
+                                               const double* __restrict distance, const double* __restrict mass1,
+                                               const double* __restrict mass2, const double* __restrict rho,
+                                               const double* __restrict pressure, const double* __restrict dvx,
+                                               const double* __restrict dvy, const double* __restrict dvz,
+                                               double* __restrict force, double* __restrict dt_limit) {
+    for (std::size_t k = k0; k < k1; ++k) {
+        const int32_t i = end1[k], j = end2[k];
+        const plab::sph::Pair s{{normal[3 * k], normal[3 * k + 1], normal[3 * k + 2]},
+                                {rel_velocity[3 * k], rel_velocity[3 * k + 1], rel_velocity[3 * k + 2]},
+                                {dvx[i], dvy[i], dvz[i]},
+                                {dvx[j], dvy[j], dvz[j]},
+                                distance[k], mass1[k], mass2[k], rho[i], rho[j], pressure[i], pressure[j]};
+        const PairForce f = plab::sph::pair_force<K, V, Anticlump>(p, dim3, s);
+        force[3 * k] = f.force.x; force[3 * k + 1] = f.force.y; force[3 * k + 2] = f.force.z;
+        dt_limit[k] = f.dt_limit;
+    }
+}
+
+// The batch loop built twice, for SSE2 and for AVX2 (picked once at load
+// time): four pairs per instruction where the CPU has AVX2. No FMA in
+// either, so both give the bits of law().
+// (flatten: the choices of with_choices() and the law inlined into each
+// clone, else the loops are built for SSE2 only)
+__attribute__((target_clones("avx2", "default"), flatten)) void sph_rows(const plab::sph::LawParams& p,
+                                                                         const plab_contact_batch& b, std::size_t k0,
+                                                                         std::size_t k1) {
+    const int dim3 = b.dim == 3;
+    const double* const* f = b.body_fields;
+    plab::sph::with_choices(p, [&](auto k, auto v, auto a) {
+        pair_forces<decltype(k)::value, decltype(v)::value, decltype(a)::value>(
+            p, dim3, k0, k1, b.end1, b.end2, b.normal, b.rel_velocity, b.distance, b.mass1, b.mass2, f[density],
+            f[pressure], f[wall_dvx], f[wall_dvy], f[wall_dvz], b.force, b.dt_limit);
+    });
+}
 
 struct Sph {
     static constexpr const char* name = "sph";
@@ -83,7 +134,6 @@ struct Sph {
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 
     // density and pressure first: other plug-ins (SPH-DEM coupling) name them so
-    enum Field : int { density, pressure, wall_dvx, wall_dvy, wall_dvz };
     static constexpr plab_field_desc fields_read[] = {
         {"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0},
         {"sph_wall_velocity_correction_x", "m/s", 0.0}, {"sph_wall_velocity_correction_y", "m/s", 0.0},
@@ -95,15 +145,7 @@ struct Sph {
         return plab::sph::support_factor(KernelKind(int(p[kernel]))) * p[smoothing_length];
     }
 
-    explicit Sph(const double* p)
-        : kind_(KernelKind(int(p[kernel]))), h_(p[smoothing_length]), rho0_(p[rest_density]),
-          c0_(p[speed_of_sound]), laminar_(int(p[viscosity]) == 0), mu_(p[mu]), alpha_(p[alpha]), beta_(p[beta]),
-          anticlump_(p[anticlump]), dp_(p[anticlump_spacing] > 0 ? p[anticlump_spacing] : p[smoothing_length]),
-          delta_(p[density_diffusion]) {
-        // W(dp) must be positive for eq. 17: a spacing outside the support switches the term off
-        if (dp_ >= plab::sph::support_factor(kind_) * h_) anticlump_ = 0;
-        for (int d : {2, 3}) derivative_scale_[d == 3] = plab::sph::normalisation(kind_, d, h_) / h_;
-    }
+    explicit Sph(const double* p) : law_(law_params(p)), delta_(p[density_diffusion]) {}
 
     // The host calls the law twice per cycle (rates_stage): first for the
     // continuity sum, which the passes turn into density and pressure at the
@@ -111,90 +153,95 @@ struct Sph {
     static constexpr bool rates_stage = true;
 
     void law(const Contact& c) const {
-        const Vec3 v_rel = c.rel_velocity();
-        // the force stage's outputs are the ones kept (the host clears them
-        // before each stage): the step limit only there
-        if (!c.rates_stage()) c.set_dt_limit(step_limit(plab::norm(v_rel)));
-        if (c.with_wall()) return;  // walls carry no SPH state: use boundary balls (docs/sph.md)
-        const double r = c.distance();
-        if (r >= support_) return;
-        const Vec3 n = c.normal();
-        const double dW = derivative_scale_[c.dim() == 3] * plab::sph::detail::shape_derivative(kind_, r / h_);  // <= 0
-        const double m1 = c.mass1(), m2 = c.mass2();
-        const double v_n = plab::dot(v_rel, n);  // < 0 while approaching
-
         if (c.rates_stage()) {
-            continuity(c, r, dW, v_n, m1, m2);
+            continuity(c);
             return;
         }
-        const double rho1 = density_or_rest(c.field1(density)), rho2 = density_or_rest(c.field2(density));
-
-        // eqs. 15–16: m_2 dv_2/dt = -m_1 m_2 (p1/ρ1² + p2/ρ2² + Π + R) ∇_2 W_21
-        const double p_term = c.field1(pressure) / (rho1 * rho1) + c.field2(pressure) / (rho2 * rho2);
-        double scalar = p_term + anticlump_term(r, c.dim(), p_term);
-        // the viscous terms see a no-slip wall ball at its extrapolated velocity (Adami 2012)
-        const Vec3 v_visc = v_rel + wall_correction(c, 2) - wall_correction(c, 1);
-        if (!laminar_) scalar += monaghan(r, plab::dot(v_visc, n), rho1, rho2);
-        Vec3 f2 = (-m1 * m2 * scalar * dW) * n;
-        if (laminar_ && mu_ > 0) {
-            // eq. 14 (Morris): Σ m_j (μ_i+μ_j) x_ij·∇_i W_ij / (ρ_i ρ_j (r² + 0.01h²)) v_ij, x_ij·∇_i W_ij = r dW/dr
-            f2 += (m1 * m2 * 2 * mu_ * r * dW / (rho1 * rho2 * (r * r + 0.01 * h_ * h_))) * v_visc;
+        if (c.with_wall()) {  // walls carry no SPH state: use boundary balls (docs/sph.md); a step limit only
+            c.set_dt_limit(wall_step_limit(plab::norm(c.rel_velocity())));
+            return;
         }
-        c.set_force(f2);
-        c.set_stiffness(0);
+        const plab::sph::Pair s = pair(c);
+        const int dim3 = c.dim() == 3;
+        const PairForce f = plab::sph::with_choices(law_, [&](auto k, auto v, auto a) {
+            return plab::sph::pair_force<decltype(k)::value, decltype(v)::value, decltype(a)::value>(law_, dim3, s);
+        });
+        c.set_force(f.force);
+        c.set_dt_limit(f.dt_limit);
+    }
+    // law() on every row of a batch of active rows: the force stage of
+    // ball–ball pairs as one loop GCC vectorises (sph_rows); other batches
+    // row by row
+    void law_rows(const plab_contact_batch& b, std::size_t k0, std::size_t k1) const {
+        if (b.stage == PLAB_STAGE_RATES || b.end2_is_wall) {
+            for (std::size_t k = k0; k < k1; ++k) law(Contact(b, uint32_t(k)));
+            return;
+        }
+        sph_rows(law_, b, k0, k1);
     }
 
 private:
-    // CFL on the sound speed plus the pair's relative speed; the viscous
-    // diffusion limit 0.125 h²/ν for the laminar model.
-    double step_limit(double speed) const {
-        double dt = 0.25 * h_ / (c0_ + speed);
-        if (laminar_ && mu_ > 0) dt = std::min(dt, 0.125 * h_ * h_ * rho0_ / mu_);
-        return dt;
+    // The pair's inputs as pair_force() takes them.
+    static plab::sph::Pair pair(const Contact& c) {
+        return {c.normal(), c.rel_velocity(),
+                {c.field1(wall_dvx), c.field1(wall_dvy), c.field1(wall_dvz)},
+                {c.field2(wall_dvx), c.field2(wall_dvy), c.field2(wall_dvz)},
+                c.distance(), c.mass1(), c.mass2(), c.field1(density), c.field2(density), c.field1(pressure),
+                c.field2(pressure)};
+    }
+    double wall_step_limit(double speed) const {
+        return law_.viscosity == Viscosity::morris ? plab::sph::step_limit<Viscosity::morris>(law_, speed)
+                                                   : plab::sph::step_limit<Viscosity::none>(law_, speed);
     }
     // eq. 7: dρ_i/dt = Σ m_j v_ij·∇_i W_ij; both ends get m_other dW/dr (v_rel·n).
     // Islam eq. 6 adds δ h c0 Σ 2 (m_j/ρ_j)(ρ_i - ρ_j) x_ij·∇_i W_ij/(r² + 0.01h²),
     // x_ij·∇_i W_ij = r dW/dr for both ends: it diffuses density from the denser end.
-    void continuity(const Contact& c, double r, double dW, double v_n, double m1, double m2) const {
+    void continuity(const Contact& c) const {
+        if (c.with_wall()) return;
+        const double r = c.distance();
+        if (r >= law_.support) return;
+        const double h = law_.h;
+        const double dW = law_.derivative_scale[c.dim() == 3] * plab::sph::detail::shape_derivative(law_.kind, r / h);
+        const double m1 = c.mass1(), m2 = c.mass2();
+        const double v_n = plab::dot(c.rel_velocity(), c.normal());  // < 0 while approaching
         c.accumulate1(drho_dt, m2 * dW * v_n);
         c.accumulate2(drho_dt, m1 * dW * v_n);
         if (delta_ <= 0) return;
-        const double rho1 = density_or_rest(c.field1(density)), rho2 = density_or_rest(c.field2(density));
-        const double d = delta_ * h_ * c0_ * 2 * (rho1 - rho2) * r * dW / (r * r + 0.01 * h_ * h_);
+        const double rho1 = plab::sph::rho_or_rest(c.field1(density), law_.rho0);
+        const double rho2 = plab::sph::rho_or_rest(c.field2(density), law_.rho0);
+        const double d = delta_ * h * law_.c0 * 2 * (rho1 - rho2) * r * dW / (r * r + law_.eta2);
         c.accumulate1(drho_dt, d * m2 / rho2);
         c.accumulate2(drho_dt, -d * m1 / rho1);
     }
-    Vec3 wall_correction(const Contact& c, int end) const {
-        if (end == 1) return {c.field1(wall_dvx), c.field1(wall_dvy), c.field1(wall_dvz)};
-        return {c.field2(wall_dvx), c.field2(wall_dvy), c.field2(wall_dvz)};
+
+    static plab::sph::LawParams law_params(const double* p) {
+        plab::sph::LawParams l{};
+        l.kind = KernelKind(int(p[kernel]));
+        const bool laminar = int(p[viscosity]) == 0;
+        l.viscosity = !laminar ? Viscosity::monaghan : p[mu] > 0 ? Viscosity::morris : Viscosity::none;
+        l.h = p[smoothing_length];
+        l.rho0 = p[rest_density];
+        l.c0 = p[speed_of_sound];
+        l.mu = p[mu];
+        l.alpha = p[alpha];
+        l.beta = p[beta];
+        l.support = plab::sph::support_factor(l.kind) * l.h;
+        l.eta2 = 0.01 * l.h * l.h;
+        l.cfl_length = 0.25 * l.h;
+        l.viscous_dt = 0.125 * l.h * l.h * l.rho0 / l.mu;  // (used with mu > 0 only)
+        // W(dp) must be positive for eq. 17: a spacing outside the support switches the term off
+        const double dp = p[anticlump_spacing] > 0 ? p[anticlump_spacing] : l.h;
+        l.anticlump = dp < l.support ? p[anticlump] : 0.0;
+        for (int d : {2, 3}) {
+            l.value_scale[d == 3] = plab::sph::normalisation(l.kind, d, l.h);
+            l.derivative_scale[d == 3] = l.value_scale[d == 3] / l.h;
+            l.w_dp[d == 3] = plab::sph::Kernel{l.kind, d, l.h}.value(dp);
+        }
+        return l;
     }
 
-    // The host's nominal-timestep probe passes zero fields: fall back to ρ0.
-    double density_or_rest(double rho) const { return rho > 0 ? rho : rho0_; }
-
-    // eq. 17: R_ij = (v_max/c0)² |p_i/ρ_i² + p_j/ρ_j²| (W_ij / W(dp))⁴
-    double anticlump_term(double r, int dim, double p_term) const {
-        if (anticlump_ <= 0) return 0;
-        const Kernel W{kind_, dim, h_};
-        const double ratio = W.value(r) / W.value(dp_);  // finite: dp_ lies inside the support (constructor)
-        return anticlump_ * std::fabs(p_term) * ratio * ratio * ratio * ratio;
-    }
-
-    // Islam eqs. 8–9: Π = (-α c̄ μ_ij + β μ_ij²)/ρ̄ while approaching,
-    // μ_ij = h v_ij·x_ij/(r² + 0.01h²) with v_ij·x_ij = r (v_rel·n).
-    double monaghan(double r, double v_n, double rho1, double rho2) const {
-        if (v_n >= 0) return 0;
-        const double mu_ij = h_ * r * v_n / (r * r + 0.01 * h_ * h_);
-        return (-alpha_ * c0_ * mu_ij + beta_ * mu_ij * mu_ij) / (0.5 * (rho1 + rho2));
-    }
-
-    KernelKind kind_;
-    double h_, rho0_, c0_;
-    bool laminar_;
-    double mu_, alpha_, beta_, anticlump_, dp_, delta_;
-    // kernel constants, once per instance rather than per pair: dW/dr = scale[dim 3] f'(r/h)
-    double support_ = plab::sph::support_factor(kind_) * h_;
-    double derivative_scale_[2] = {0, 0};
+    plab::sph::LawParams law_;
+    double delta_;
 };
 
 } // namespace

@@ -24,6 +24,7 @@ struct ContactInput {
     Vec rel_velocity = Vec::Zero(), rel_angular_velocity = Vec::Zero();
     double r1 = 0.01, r2 = 0.012, m1 = 0.01, m2 = 0.015;
     std::vector<double> history;
+    int32_t body1 = -1, body2 = -1;  // body indices of the ends; -1: from the row (below)
 };
 
 struct ContactOutput {
@@ -33,8 +34,11 @@ struct ContactOutput {
 };
 
 // Calls compute() once over a batch of the given contacts, like the host.
+// Body field f of body i is body_fields[f][i] when given (64 bodies), else
+// a plausible 1000 for every field and body.
 std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state, const std::vector<double>& props,
-                                   int dim, double dt, const std::vector<ContactInput>& in) {
+                                   int dim, double dt, const std::vector<ContactInput>& in,
+                                   const std::vector<std::vector<double>>* body_fields = nullptr) {
     const std::size_t n = in.size(), hs = d.history_count;
     std::vector<int32_t> e1(n), e2(n);
     std::vector<uint8_t> active(n);
@@ -43,13 +47,15 @@ std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state
         kt(n, 0.0), kr(n, 0.0), dtl(n, INFINITY), brk(n, 0.0);
     std::vector<double> field_values(64, 1000.0);  // a plausible value for any body field
     std::vector<const double*> fields(d.fields_read_count + 1, field_values.data());
+    if (body_fields)
+        for (uint32_t f = 0; f < d.fields_read_count; ++f) fields[f] = (*body_fields)[f].data();
     std::vector<std::vector<double>> acc(2 * d.fields_accumulated_count + 2, std::vector<double>(n, 0.0));
     std::vector<double*> acc1, acc2;
     for (uint32_t f = 0; f <= d.fields_accumulated_count; ++f) { acc1.push_back(acc[2 * f].data()); acc2.push_back(acc[2 * f + 1].data()); }
     for (std::size_t k = 0; k < n; ++k) {
         const ContactInput& c = in[k];
-        e1[k] = int32_t(2 * k % 64);
-        e2[k] = int32_t((2 * k + 1) % 64);
+        e1[k] = c.body1 >= 0 ? c.body1 : int32_t(2 * k % 64);
+        e2[k] = c.body2 >= 0 ? c.body2 : int32_t((2 * k + 1) % 64);
         for (int a = 0; a < 3; ++a) {
             normal[3 * k + a] = c.normal[a];
             rv[3 * k + a] = c.rel_velocity[a];
@@ -302,21 +308,24 @@ TEST_CASE("contract: every active contact reports a positive stable timestep", "
 }
 
 // A model may run a batch whose rows are all active through its own loop
-// (the adapter's law_rows(), e.g. vectorised: `linear`); the host's packed
-// batches are such batches. It must give, bit for bit, what the same rows
-// give one by one in a batch that also holds inactive rows: forces,
-// history, energies and stiffness. Two steps, so that the second starts
-// from a stored shear force (rotated into a turned contact plane), with
-// speeds from sticking to sliding, for every value of a mode property.
+// (the adapter's law_rows(), e.g. vectorised: `linear`, `sph`); the host's
+// packed batches are such batches. It must give, bit for bit, what the same
+// rows give one by one in a batch that also holds inactive rows: forces,
+// history, energies, stiffness and step limit. Two steps, so that the second
+// starts from a stored shear force (rotated into a turned contact plane),
+// with speeds from sticking to sliding, distances across the activity range,
+// body fields that differ from body to body, in 2D and 3D, for every value of
+// a mode property and with the properties whose default is zero at zero (a
+// term switched off).
 TEST_CASE("contract: a batch of active rows only gives what the same rows give among inactive ones, bit for bit",
           "[contract]") {
     const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
     PluginHost host;
     std::mt19937 rng(11);
-    std::uniform_real_distribution<double> u(-1, 1);
+    std::uniform_real_distribution<double> u(-1, 1), u01(0, 1);
     for (auto& m : every_model(host)) {
         const plab_contact_model_desc& d = *m->d;
-        if (d.range_kind != PLAB_RANGE_GAP || d.persist_slot >= 0) continue;  // inactive rows made by their gap
+        if (d.persist_slot >= 0) continue;  // inactive rows made by their gap or distance
         std::vector<std::vector<double>> prop_sets{m->props};
         for (uint32_t p = 0; p < d.property_count; ++p)  // every value of a small integer property (a mode)
             if ((d.properties[p].flags & PLAB_INTEGER) && d.properties[p].max_value - d.properties[p].min_value <= 4)
@@ -324,41 +333,58 @@ TEST_CASE("contract: a batch of active rows only gives what the same rows give a
                     prop_sets.push_back(m->props);
                     prop_sets.back()[p] = v;
                 }
-        for (const auto& props : prop_sets) {
-            void* state = d.create ? d.create(props.data()) : nullptr;
-            std::vector<ContactInput> rows;
-            for (int k = 0; k < 300; ++k) {
-                ContactInput c = typical(d, props, 3, rng);
-                c.rel_velocity *= std::pow(10.0, 2 * u(rng));  // 0.005 to 50 m/s: sticking and sliding
-                rows.push_back(c);
+        prop_sets.push_back(m->props);
+        for (uint32_t p = 0; p < d.property_count; ++p)
+            if (d.properties[p].default_value == 0) prop_sets.back()[p] = 0;
+        // each body's fields: densities around 1000, pressures of both signs, small velocities
+        std::vector<std::vector<double>> fields(d.fields_read_count, std::vector<double>(64));
+        for (auto& f : fields)
+            for (double& x : f) x = 1000 * (1 + 0.3 * u(rng));
+        for (auto& f : fields)
+            if (&f != &fields[0])
+                for (double& x : f) x *= u(rng) * 1e-3;
+        for (const auto& props : prop_sets)
+            for (int dim : {2, 3}) {
+                void* state = d.create ? d.create(props.data()) : nullptr;
+                const double range = d.activity_range(props.data());
+                std::vector<ContactInput> rows;
+                for (int k = 0; k < 300; ++k) {
+                    ContactInput c = typical(d, props, dim, rng);
+                    c.rel_velocity *= std::pow(10.0, 2 * u(rng));  // 0.005 to 50 m/s: sticking and sliding
+                    if (d.range_kind == PLAB_RANGE_DISTANCE) c.gap = u01(rng) * range - c.r1 - c.r2;
+                    c.body1 = int32_t(rng() % 64);
+                    c.body2 = int32_t(rng() % 64);
+                    rows.push_back(c);
+                }
+                for (int step = 0; step < 2; ++step) {
+                    std::vector<ContactInput> mixed;  // each row, then an inactive one
+                    for (const ContactInput& c : rows) {
+                        mixed.push_back(c);
+                        ContactInput far = c;
+                        far.gap = range + 1e-3 - (d.range_kind == PLAB_RANGE_DISTANCE ? c.r1 + c.r2 : 0.0);
+                        mixed.push_back(far);
+                    }
+                    const auto dense = compute(d, state, props, dim, 1e-4, rows, &fields);
+                    const auto one_by_one = compute(d, state, props, dim, 1e-4, mixed, &fields);
+                    for (std::size_t k = 0; k < rows.size(); ++k) {
+                        const ContactOutput &a = dense[k], &b = one_by_one[2 * k];
+                        INFO("model " << d.name << ", dim " << dim << ", step " << step << ", row " << k);
+                        for (int c = 0; c < 3; ++c) CHECK(same_bits(a.force[c], b.force[c]));
+                        for (std::size_t h = 0; h < a.history.size(); ++h) CHECK(same_bits(a.history[h], b.history[h]));
+                        CHECK(same_bits(a.strain, b.strain));
+                        CHECK(same_bits(a.slip, b.slip));
+                        CHECK(same_bits(a.dashpot, b.dashpot));
+                        CHECK(same_bits(a.k_t, b.k_t));
+                        CHECK(same_bits(a.dt_limit, b.dt_limit));
+                    }
+                    for (std::size_t k = 0; k < rows.size(); ++k) {  // the next step: stored history, turned plane
+                        rows[k].history = dense[k].history;
+                        const Eigen::Matrix3d R(
+                            Eigen::AngleAxisd(0.05 * u(rng), Vec(u(rng), u(rng), u(rng)).normalized()));
+                        rows[k].normal = R * rows[k].normal;
+                    }
+                }
+                if (d.destroy && state) d.destroy(state);
             }
-            for (int step = 0; step < 2; ++step) {
-                std::vector<ContactInput> mixed;  // each row, then an inactive one
-                for (const ContactInput& c : rows) {
-                    mixed.push_back(c);
-                    ContactInput far = c;
-                    far.gap = d.activity_range(props.data()) + 1e-3;
-                    mixed.push_back(far);
-                }
-                const auto dense = compute(d, state, props, 3, 1e-4, rows);
-                const auto one_by_one = compute(d, state, props, 3, 1e-4, mixed);
-                for (std::size_t k = 0; k < rows.size(); ++k) {
-                    const ContactOutput &a = dense[k], &b = one_by_one[2 * k];
-                    INFO("model " << d.name << ", step " << step << ", row " << k);
-                    for (int c = 0; c < 3; ++c) CHECK(same_bits(a.force[c], b.force[c]));
-                    for (std::size_t h = 0; h < a.history.size(); ++h) CHECK(same_bits(a.history[h], b.history[h]));
-                    CHECK(same_bits(a.strain, b.strain));
-                    CHECK(same_bits(a.slip, b.slip));
-                    CHECK(same_bits(a.dashpot, b.dashpot));
-                    CHECK(same_bits(a.k_t, b.k_t));
-                }
-                for (std::size_t k = 0; k < rows.size(); ++k) {  // the next step: stored history, turned plane
-                    rows[k].history = dense[k].history;
-                    const Eigen::Matrix3d R(Eigen::AngleAxisd(0.05 * u(rng), Vec(u(rng), u(rng), u(rng)).normalized()));
-                    rows[k].normal = R * rows[k].normal;
-                }
-            }
-            if (d.destroy && state) d.destroy(state);
-        }
     }
 }
