@@ -381,16 +381,19 @@ struct SphDensitySummation {
             std::max(kMinChunkContacts, (std::size_t(v.contact_count) + kMaxChunks - 1) / kMaxChunks);
         const std::size_t n_chunks = (std::size_t(v.contact_count) + per_chunk - 1) / per_chunk;
         partial_.resize(n_chunks * width);
+        first_.resize(n_chunks);
+        last_.resize(n_chunks);
 #pragma omp parallel for schedule(dynamic) if (n_chunks > 1)
         for (std::size_t c = 0; c < n_chunks; ++c)
             sum_chunk(v, W, c * per_chunk, std::min<std::size_t>(v.contact_count, (c + 1) * per_chunk),
-                      partial_.data() + c * width);
+                      partial_.data() + c * width, first_[c], last_[c]);
         double* rho = v.fields[density];
 #pragma omp parallel for schedule(static) if (n >= 4096)
         for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
             if (v.group[i] == boundary_) continue;
             double mass_sum = 0, volume_sum = 0;  // the chunks' sums in chunk order
             for (std::size_t c = 0; c < n_chunks; ++c) {
+                if (i < first_[c] || i > last_[c]) continue;  // (its sums are zero: x + 0 is x)
                 const double* sum = partial_.data() + c * width + stride() * std::size_t(i);
                 mass_sum += sum[0];
                 if (normalised_) volume_sum += sum[1];
@@ -402,20 +405,32 @@ struct SphDensitySummation {
 
 private:
     // The pairs are summed in chunks of contacts, each into its own partial
-    // sums over all bodies, and each body adds its chunks' sums in chunk
-    // order: the same bits for any thread count (the chunks depend on the
-    // contact count only). At most kMaxChunks chunks, so the partial sums
-    // take at most 16 (32 normalised) doubles per body.
+    // sums over the bodies its pairs touch (first to last index, usually a
+    // narrow band: bodies are numbered along the lattice and pairs listed by
+    // end 1), and each body adds its chunks' sums in chunk order: the same
+    // bits for any thread count (the chunks depend on the contact count
+    // only). At most kMaxChunks chunks, so the partial sums take at most 16
+    // (32 normalised) doubles per body.
     static constexpr std::size_t kMinChunkContacts = 16384, kMaxChunks = 16;
     std::size_t stride() const { return normalised_ ? 2 : 1; }  // mass sum, then volume sum
 
     // eqs. 8–9 over the chunk of contacts [k0, k1), pairs within the support: m_j W_ij (and
     // (m_j/rho_j) W_ij) to end i, and the same with i and j swapped to end j;
-    // body i's sums at sum[stride() i]
-    void sum_chunk(const plab_pass_view& v, const plab::sph::Kernel& W, std::size_t k0, std::size_t k1,
-                   double* sum) const {
+    // body i's sums at sum[stride() i], for the bodies [first, last] that
+    // the chunk's ball–ball pairs touch (none: first > last)
+    void sum_chunk(const plab_pass_view& v, const plab::sph::Kernel& W, std::size_t k0, std::size_t k1, double* sum,
+                   std::int64_t& first, std::int64_t& last) const {
         const std::size_t stride = this->stride();
-        std::fill_n(sum, stride * v.body_count, 0.0);
+        std::int32_t lo = std::numeric_limits<std::int32_t>::max(), hi = -1;
+        for (std::size_t k = k0; k < k1; ++k) {  // (wall rows: end 2 is a facet, not summed below)
+            const std::int32_t e2 = v.contact_end2_is_wall[k] ? v.contact_end1[k] : v.contact_end2[k];
+            lo = std::min(lo, std::min(v.contact_end1[k], e2));
+            hi = std::max(hi, std::max(v.contact_end1[k], e2));
+        }
+        first = lo;
+        last = hi;
+        if (hi < lo) return;
+        std::fill(sum + stride * std::size_t(lo), sum + stride * (std::size_t(hi) + 1), 0.0);
         const double support2 = W.support() * W.support();
         // W.value(r) with its normalisation taken once, not per pair (same arithmetic)
         const double norm = plab::sph::normalisation(kind_, int(v.dim), h_);
@@ -444,6 +459,7 @@ private:
     int boundary_;
     bool normalised_;
     std::vector<double> partial_;
+    std::vector<std::int64_t> first_, last_;  // each chunk's bodies
 };
 
 // XSPH (thesis eq. 18; Monaghan 1989): a particle moves with its velocity
