@@ -220,6 +220,7 @@ private:
         const bool laminar = int(p[viscosity]) == 0;
         l.viscosity = !laminar ? Viscosity::monaghan : p[mu] > 0 ? Viscosity::morris : Viscosity::none;
         l.h = p[smoothing_length];
+        l.inv_h = 1.0 / l.h;
         l.rho0 = p[rest_density];
         l.c0 = p[speed_of_sound];
         l.mu = p[mu];

@@ -24,7 +24,7 @@ enum class Viscosity : int { none = 0, morris = 1, monaghan = 2 };
 struct LawParams {
     KernelKind kind;
     Viscosity viscosity;
-    double h, rho0, c0, mu, alpha, beta;
+    double h, inv_h, rho0, c0, mu, alpha, beta;
     double anticlump;          // (v_max/c0)^2 of eq. 17; 0: off
     double support;            // kernel support, m
     double eta2;               // 0.01 h^2 of the viscous terms, m^2
@@ -60,7 +60,7 @@ template <Viscosity V> [[gnu::always_inline]] inline double step_limit(const Law
 
 // eq. 17: R_ij = (v_max/c0)^2 |p_i/rho_i^2 + p_j/rho_j^2| (W_ij / W(dp))^4
 template <KernelKind K> [[gnu::always_inline]] inline double anticlump_term(const LawParams& p, int dim3, double r, double p_term) {
-    const double ratio = p.value_scale[dim3] * detail::shape(K, r / p.h) / p.w_dp[dim3];
+    const double ratio = p.value_scale[dim3] * detail::shape(K, r * p.inv_h) / p.w_dp[dim3];
     return p.anticlump * std::fabs(p_term) * ratio * ratio * ratio * ratio;
 }
 
@@ -83,7 +83,8 @@ template <KernelKind K, Viscosity V, bool Anticlump>
 [[gnu::always_inline]] inline PairForce pair_force(const LawParams& p, int dim3, const Pair& s) {
     const Vec3& n = s.normal;
     const double r = s.r;
-    const double dW = p.derivative_scale[dim3] * detail::shape_derivative(K, r / p.h);  // <= 0
+    // q = r/h as r (1/h): the divider is what bounds the vectorised loop
+    const double dW = p.derivative_scale[dim3] * detail::shape_derivative(K, r * p.inv_h);  // <= 0
     const double rho1 = rho_or_rest(s.rho1, p.rho0), rho2 = rho_or_rest(s.rho2, p.rho0);
     const double p_term = s.p1 / (rho1 * rho1) + s.p2 / (rho2 * rho2);
     double scalar = p_term;

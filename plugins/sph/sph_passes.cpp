@@ -435,6 +435,9 @@ private:
         // W.value(r) with its normalisation taken once, not per pair (same arithmetic)
         const double norm = plab::sph::normalisation(kind_, int(v.dim), h_);
         const double* rho = v.fields[density];
+        // q = r/h as r (1/h): a square root and a division per pair kept the
+        // divider busy; q changes by rounding only
+        const double inv_h = 1.0 / h_;
         for (std::size_t k = k0; k < k1; ++k) {
             if (v.contact_end2_is_wall[k]) continue;
             const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
@@ -443,7 +446,7 @@ private:
             const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
             const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             if (r2 >= support2) continue;
-            const double w = norm * plab::sph::detail::shape(kind_, std::sqrt(r2) / h_);
+            const double w = norm * plab::sph::detail::shape(kind_, std::sqrt(r2) * inv_h);
             double* sum_i = sum + stride * std::size_t(i);
             double* sum_j = sum + stride * std::size_t(j);
             sum_i[0] += v.mass[j] * w;
