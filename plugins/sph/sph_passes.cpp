@@ -431,7 +431,7 @@ private:
         last = hi;
         if (hi < lo) return;
         std::fill(sum + stride * std::size_t(lo), sum + stride * (std::size_t(hi) + 1), 0.0);
-        const double support2 = W.support() * W.support();
+        const double support = W.support();
         // W.value(r) with its normalisation taken once, not per pair (same arithmetic)
         const double norm = plab::sph::normalisation(kind_, int(v.dim), h_);
         const double* rho = v.fields[density];
@@ -441,12 +441,9 @@ private:
         for (std::size_t k = k0; k < k1; ++k) {
             if (v.contact_end2_is_wall[k]) continue;
             const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
-            const double* xi = v.position + 3 * i;
-            const double* xj = v.position + 3 * j;
-            const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
-            const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            if (r2 >= support2) continue;
-            const double w = norm * plab::sph::detail::shape(kind_, std::sqrt(r2) * inv_h);
+            const double r = v.contact_distance ? v.contact_distance[k] : distance(v, i, j);  // (ABI 6)
+            if (r >= support) continue;
+            const double w = norm * plab::sph::detail::shape(kind_, r * inv_h);
             double* sum_i = sum + stride * std::size_t(i);
             double* sum_j = sum + stride * std::size_t(j);
             sum_i[0] += v.mass[j] * w;
@@ -455,6 +452,15 @@ private:
             sum_i[1] += v.mass[j] / rho[j] * w;
             sum_j[1] += v.mass[i] / rho[i] * w;
         }
+    }
+
+    // |x_j - x_i| with the host's arithmetic (its range test: the same bits
+    // whether the host passes the distances or not)
+    static double distance(const plab_pass_view& v, int32_t i, int32_t j) {
+        const double* xi = v.position + 3 * i;
+        const double* xj = v.position + 3 * j;
+        const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+        return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     }
 
     plab::sph::KernelKind kind_;

@@ -38,6 +38,10 @@
  *      outputs it writes, and the host then computes and reads back only
  *      those. 0 (every older plug-in, and a model that declares nothing)
  *      means all of them, as before.
+ *   6  plab_pass_view gains `contact_distance`, appended: the centre
+ *      distance of each listed contact when the host has it at the current
+ *      positions (the range test just computed it), else NULL; a pass that
+ *      reads it computes the distance from the positions when it is NULL.
  *
  * Contact models are called once per *batch* of contacts over host-owned
  * structure-of-arrays data (plab_contact_batch). A batch may hold only
@@ -63,7 +67,7 @@
 extern "C" {
 #endif
 
-#define PLAB_ABI_VERSION 5u
+#define PLAB_ABI_VERSION 6u
 #define PLAB_ABI_OLDEST 1u /* oldest plug-in ABI this host still loads */
 
 /* ---- descriptions ------------------------------------------------------ */
@@ -293,6 +297,13 @@ typedef struct plab_pass_view {
      * the ball's id and group, which is how the user knows it. */
     char* diagnostic;
     uint32_t diagnostic_capacity;
+    /* since ABI 6: |x(contact_end2) - x(contact_end1)| of each listed
+     * contact, m (for a ball–wall contact the ball centre's distance to the
+     * wall), as the host's range test computed it at the current positions;
+     * NULL when the host has none for this list (e.g. a pass phase after the
+     * positions moved): then compute it from `position`. Read it only when
+     * not NULL; a pass for older hosts never sees it. */
+    const double* contact_distance;
 } plab_pass_view;
 
 /* Return codes of plab_pass_desc.run: 0 success; PLAB_PASS_UNSTABLE the

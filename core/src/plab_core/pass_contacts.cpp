@@ -3,8 +3,10 @@
 // forces come from the packed sweep after those passes. One sweep over the
 // candidates sets the active flags and gaps every reader sees, lists the
 // passes' contacts (what build_pass_contacts() would list, in the same
-// order) and, for the centre-force path, the rows in range of each batch with
-// their centre distance, so that pack_centre_rows() visits only those.
+// order) with their centre distance (the passes' contact_distance, abi.h
+// ABI 6: summation density needs no square root of its own) and, for the
+// centre-force path, the rows in range of each batch with their centre
+// distance, so that pack_centre_rows() visits only those.
 #include "dense_batch.hpp"
 
 #include <algorithm>
@@ -21,7 +23,7 @@ bool on_centre_path(const ModelInstance& inst) {
 
 void World::mark_ball_rows_in_range() {
     const bool list = !passes_.empty();
-    if (list) { pc_end1_.clear(); pc_end2_.clear(); pc_wall_.clear(); }
+    if (list) { pc_end1_.clear(); pc_end2_.clear(); pc_wall_.clear(); pc_distance_.clear(); }
     in_range_.resize(sets_.size());
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         ContactSet& s = *sets_[si];
@@ -29,7 +31,12 @@ void World::mark_ball_rows_in_range() {
         if (s.with_wall) {  // geometry() set their flags
             if (list)
                 for (std::size_t k = 0; k < s.size(); ++k)
-                    if (s.active[k]) { pc_end1_.push_back(s.end1[k]); pc_end2_.push_back(s.end2[k]); pc_wall_.push_back(1); }
+                    if (s.active[k]) {
+                        pc_end1_.push_back(s.end1[k]);
+                        pc_end2_.push_back(s.end2[k]);
+                        pc_wall_.push_back(1);
+                        pc_distance_.push_back(s.distance[k]);
+                    }
             continue;
         }
         mark_set_in_range(si, list);
@@ -50,12 +57,13 @@ void World::mark_set_in_range(std::uint32_t si, bool list) {
     const std::size_t n = sets_[si]->size(), n_batches = (n + kContactBatch - 1) / kContactBatch;
     r.count.resize(n_batches);
     r.row.resize(n);
-    r.distance.resize(centre ? n : 0);
+    const bool distances = centre || list;  // (the packer's and the passes')
+    r.distance.resize(distances ? n : 0);
 #pragma omp parallel for schedule(static) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::size_t k0 = b * kContactBatch, k1 = std::min(n, k0 + kContactBatch);
         r.count[b] = std::uint32_t(range_test_rows(inst, si, k0, k1, r.row.data() + k0,
-                                                   centre ? r.distance.data() + k0 : nullptr));
+                                                   distances ? r.distance.data() + k0 : nullptr));
     }
     r.listed = centre;
     if (list) append_pass_contacts(si);
@@ -73,6 +81,7 @@ void World::append_pass_contacts(std::uint32_t si) {
     pc_end1_.resize(base + total);
     pc_end2_.resize(base + total);
     pc_wall_.resize(base + total, 0);
+    pc_distance_.resize(base + total);
 #pragma omp parallel for schedule(static) if (s.size() >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::uint32_t* row = r.row.data() + b * kContactBatch;
@@ -81,6 +90,7 @@ void World::append_pass_contacts(std::uint32_t si) {
             pc_end1_[at + a] = s.end1[row[a]];
             pc_end2_[at + a] = s.end2[row[a]];
         }
+        std::copy_n(r.distance.data() + b * kContactBatch, r.count[b], pc_distance_.data() + at);
     }
 }
 

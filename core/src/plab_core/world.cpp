@@ -170,6 +170,8 @@ void World::run_passes(std::uint32_t phase) {
         v.contact_end1 = pc_end1_.data();
         v.contact_end2 = pc_end2_.data();
         v.contact_end2_is_wall = pc_wall_.data();
+        // the distances hold at these positions while the range test's lists do
+        v.contact_distance = in_range_marked_ && pc_distance_.size() == pc_end1_.size() ? pc_distance_.data() : nullptr;
         char diagnostic[512] = "";
         v.diagnostic = diagnostic;
         v.diagnostic_capacity = sizeof diagnostic;

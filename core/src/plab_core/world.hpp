@@ -338,6 +338,7 @@ private:
     // active contacts for passes (built only when a pass is loaded)
     std::vector<std::int32_t> pc_end1_, pc_end2_;
     std::vector<std::uint8_t> pc_wall_;
+    std::vector<double> pc_distance_;  // their centre distances (mark_ball_rows_in_range(): abi.h, ABI 6)
     std::vector<std::size_t> batch_at_;  // append_pass_contacts(): each batch's first place in the list
 
     // the kept copy: the contact rows whose history is not the model's
