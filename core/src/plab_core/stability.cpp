@@ -21,6 +21,17 @@
 
 namespace plab {
 
+namespace {
+// The first `dim` components of v, separated by spaces (as Eigen prints a
+// row), without Eigen's printing of a dynamic-size block: GCC 12 warns of a
+// 64-byte AVX-512 store into it (-march=native), on a path for longer rows.
+std::string first_components(const Vec& v, int dim) {
+    std::ostringstream s;
+    for (int c = 0; c < dim; ++c) s << (c ? " " : "") << v[c];
+    return s.str();
+}
+} // namespace
+
 // After every change of the scene (and at the start) the balance, the energy
 // turned over so far and the domain are measured afresh: a `set velocity`
 // adds kinetic energy that no force did work for, and is not an instability.
@@ -96,14 +107,14 @@ void World::check_domain_and_finite() {
         Diagnostic d;
         d.subject = "ball id " + std::to_string(bodies.id[i]) + " (group " + groups_[bodies.group[i]] + ")";
         std::ostringstream s;
-        s << "position " << p.head(dim).transpose() << ", velocity " << bodies.velocity[i].head(dim).transpose();
+        s << "position " << first_components(p, dim) << ", velocity " << first_components(bodies.velocity[i], dim);
         if (!finite) {
             d.quantity = "non-finite state";
             d.detail = s.str();
             d.cause = "a contact model or pass returned NaN/Inf, or the state overflowed";
         } else {
             d.quantity = "domain";
-            s << " outside [" << b.lo.head(dim).transpose() << "] .. [" << b.hi.head(dim).transpose() << "]";
+            s << " outside [" << first_components(b.lo, dim) << "] .. [" << first_components(b.hi, dim) << "]";
             d.detail = s.str();
             d.cause = "a particle went through a wall (the wall contact is too soft or the particle too fast), or the "
                       "domain is too small (scene.domain, scene.stability.domain_margin)";
