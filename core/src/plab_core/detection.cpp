@@ -17,14 +17,23 @@ namespace {
 // v holds n copies of x. A list that outgrows its columns gets room for an
 // eighth more: the candidate count of a flow creeps up and down from one
 // rebuild to the next, and a reallocation at every new high would fault
-// the pages of every column in again.
+// the pages of every column in again. A column with no block yet (new, or
+// freed by a lean rebuild, which allocates anew every time) gets just n.
 template <class T>
 void fill(std::vector<T>& v, std::size_t n, T x) {
     if (n > v.capacity()) {
+        const std::size_t room = v.capacity() == 0 ? n : n + n / 8;
         std::vector<T>().swap(v);  // the old block goes first: no two copies at the peak
-        v.reserve(n + n / 8);
+        v.reserve(room);
     }
     v.assign(n, x);
+}
+
+// Frees v's block (`v = {}` would only clear it: that assigns an empty
+// initializer list and keeps the capacity).
+template <class V>
+void release(V& v) {
+    V().swap(v);
 }
 } // namespace
 
@@ -212,14 +221,14 @@ void World::keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
 // Replace a set's rows by new candidate pairs, carrying history by key
 // (a pair listed twice — a bond that is also a candidate — is kept once).
 void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs,
-                          bool lean) {
+                          RebuildScratch::SetBuffers& t, bool lean) {
     if (!set.with_wall)
         for (auto& pr : pairs)
             if (bodies.id[pr[0]] > bodies.id[pr[1]]) std::swap(pr[0], pr[1]);  // end 1 has the lower id
     sort_by_keys(set, pairs);
     const std::size_t n = pairs.size();
     const int stride = inst.stride;
-    RebuildScratch& t = rebuild_scratch_;  // reused: a rebuild allocates nothing once the lists stop growing
+    // t: this set's own buffers, reused: a rebuild allocates nothing once the lists stop growing
     fill(t.history, n * stride, 0.0);  // (fill: a block too small goes before the new one comes)
     fill(t.e1, n, 0);
     fill(t.e2, n, 0);
@@ -241,10 +250,10 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     set.end2.swap(t.e2);
     set.history.swap(t.history);
     if (lean || n > lean_rebuild_rows) {  // the old rows and the pairs go before the columns come
-        t.e1 = {};
-        t.e2 = {};
-        t.history = {};
-        pairs = {};
+        release(t.e1);
+        release(t.e2);
+        release(t.history);
+        release(pairs);
     }
     lay_out_columns(inst, set);
     fill_pair_constants(set);
@@ -318,13 +327,15 @@ void World::rebuild() {
     for (auto* lists : {&ball_pairs, &wall_pairs})
         for (auto& l : *lists) l.clear();
     build_ball_pairs(ball_pairs);
-    if (lean) rebuild_scratch_.block_pairs = {};  // joined into ball_pairs
+    if (lean) release(rebuild_scratch_.block_pairs);  // joined into ball_pairs
     build_wall_pairs(wall_pairs);
+    auto& buffers = rebuild_scratch_.sets;  // as sets_: instance m's balls at 2m, walls at 2m + 1
+    buffers.resize(2 * instances_.size());
     for (std::size_t m = 0; m < instances_.size(); ++m) {
         keep_bonded_pairs(*instances_[m], instances_[m]->balls, ball_pairs[m]);
         keep_bonded_pairs(*instances_[m], instances_[m]->walls, wall_pairs[m]);
-        install_pairs(*instances_[m], instances_[m]->balls, ball_pairs[m], lean);
-        install_pairs(*instances_[m], instances_[m]->walls, wall_pairs[m], lean);
+        install_pairs(*instances_[m], instances_[m]->balls, ball_pairs[m], buffers[2 * m], lean);
+        install_pairs(*instances_[m], instances_[m]->walls, wall_pairs[m], buffers[2 * m + 1], lean);
     }
     position_at_build_ = bodies.position;
     wall_motion_since_build_ = 0;

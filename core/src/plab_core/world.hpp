@@ -388,16 +388,25 @@ private:
     void rebuild();
     void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out);
     void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
-    void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs, bool lean);
-    void sort_by_keys(const ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) const;
     // buffers of rebuild() and install_pairs(), kept between rebuilds
+    // (freed after a lean one)
     struct RebuildScratch {
         std::vector<std::vector<std::array<std::int32_t, 2>>> ball_pairs, wall_pairs;
         std::vector<std::vector<std::vector<std::array<std::int32_t, 2>>>> block_pairs;  // build_ball_pairs()
-        std::vector<std::int32_t> e1, e2;
-        std::vector<double> history;
+        // Per set, in sets_' order: the buffers its next list is built in
+        // (the old list's, after the swap). One pair per set, never shared:
+        // a shared pair would pass the big list's buffers on to every small
+        // or empty set in turn, and each would keep a big one.
+        struct SetBuffers {
+            std::vector<std::int32_t> e1, e2;
+            std::vector<double> history;
+        };
+        std::vector<SetBuffers> sets;
     };
     RebuildScratch rebuild_scratch_;
+    void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs,
+                       RebuildScratch::SetBuffers& t, bool lean);
+    void sort_by_keys(const ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) const;
     void build_entries();
     void fill_pair_constants(ContactSet& set) const;
     // whether the ball–ball rows of a model go to it packed (force_sweep): no
