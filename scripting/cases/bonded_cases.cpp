@@ -151,7 +151,7 @@ Cantilever static_cantilever(double r, double load, double ratio, const Strength
     for (std::size_t k = 0; k < s.size(); ++k) {
         const double* h = &s.history[k * inst.stride];
         if (h[state] <= 0) continue;
-        const double r_bar = std::min(s.radius1[k], s.radius2[k]) * inst.property("pb_rmul");
+        const double r_bar = std::min(w.end_radius(s, k, false), w.end_radius(s, k, true)) * inst.property("pb_rmul");
         const double area = 2 * r_bar, inertia = 2 * r_bar * r_bar * r_bar / 3;  // 2D strip, unit thickness
         const double centre = h[fn] / area;
         const double sigma = centre + rule.moment_factor * std::fabs(h[mz]) * r_bar / inertia;  // eq. 49

@@ -24,7 +24,7 @@ namespace {
 // and fewer live values (the loop kept seven column addresses on the stack).
 struct RangeRows {
     const std::int32_t *end1, *end2;
-    const double *r1, *r2, *history;
+    const double *radius, *history;  // radius: the bodies' (a packed set keeps none per row)
     const Vec* x;
     double* gap_col;
     std::uint8_t *active_col, *live;
@@ -41,7 +41,7 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
     for (std::size_t r = 0; r < n; ++r) {
         const std::size_t k = begin + r;
         const double dist = (c.x[c.end2[k]] - c.x[c.end1[k]]).norm();
-        const double g = dist - c.r1[k] - c.r2[k];
+        const double g = dist - c.radius[c.end1[k]] - c.radius[c.end2[k]];
         const bool active = in_range.in<ByDistance, Bonds>(c.history, k, dist, g);
         c.gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
         dist_of[r] = dist;
@@ -77,7 +77,7 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
     const std::size_t stride = std::size_t(inst.stride);
     // raw pointers: the byte stores below (flags) may alias anything, so
     // the compiler would otherwise reload every column's address per row
-    const RangeRows c{s.end1.data(), s.end2.data(), s.radius1.data(), s.radius2.data(), s.history.data(),
+    const RangeRows c{s.end1.data(), s.end2.data(), bodies.radius.data(), s.history.data(),
                       bodies.position.data(), s.gap.data(), s.active.data(), live_[si].data()};
     std::uint32_t idle[kContactBatch];
     double unused[kContactBatch];  // where an output the caller does not take goes
@@ -111,7 +111,7 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];
         const std::int32_t i = s.end1[k], j = s.end2[k];
-        const double ri = s.radius1[k], rj = s.radius2[k], dist = d.distance[a];
+        const double ri = B.radius[i], rj = B.radius[j], dist = d.distance[a];
         const double gap = dist - ri - rj;  // the range test's arithmetic
         d.gap[a] = gap;
         const PairKinematics p = ball_pair_kinematics(B, i, j, ri, dist, gap);
@@ -151,7 +151,7 @@ Vec World::contact_normal(const ContactSet& s, std::size_t k) const {
 
 Vec World::contact_point(const ContactSet& s, std::size_t k) const {
     if (!s.packed) return Vec(&s.point[3 * k]);
-    return ball_contact_point(bodies.position[s.end1[k]], contact_normal(s, k), s.radius1[k], s.gap[k]);
+    return ball_contact_point(bodies.position[s.end1[k]], contact_normal(s, k), bodies.radius[s.end1[k]], s.gap[k]);
 }
 
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols) {

@@ -48,7 +48,7 @@ void ContactSet::resize_columns(std::size_t n, int n_acc) {
     fill(active, n, std::uint8_t(0));
     fill(interior, with_wall ? n : 0, std::uint8_t(1));
     fill(force, 3 * n, 0.0);
-    for (auto* v : {&gap, &radius1, &radius2}) fill(*v, n, 0.0);
+    fill(gap, n, 0.0);
     // outputs the model writes; the others not kept at all (keeps())
     const struct { std::vector<double>* col; std::size_t width; std::uint32_t bit; } outputs[] = {
         {&moment1, 3, PLAB_IO_MOMENTS}, {&moment2, 3, PLAB_IO_MOMENTS}, {&k_t, 1, 0},
@@ -60,11 +60,12 @@ void ContactSet::resize_columns(std::size_t n, int n_acc) {
     // what only the model reads, or only per-batch sums need: none when packed
     const std::size_t m = packed ? 0 : n;
     for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) fill(*v, 3 * m, 0.0);
-    for (auto* v : {&distance, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot, &break_energy})
+    for (auto* v : {&distance, &radius1, &radius2, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot,
+                    &break_energy})
         fill(*v, m, 0.0);
     if (packed)  // not kept at all
-        for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity, &distance, &mass1, &mass2, &eff_mass,
-                        &eff_radius, &strain, &slip, &dashpot, &break_energy})
+        for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity, &distance, &radius1, &radius2, &mass1,
+                        &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot, &break_energy})
             std::vector<double>().swap(*v);
     acc1.resize(std::size_t(n_acc));
     acc2.resize(std::size_t(n_acc));
@@ -298,14 +299,16 @@ bool World::packs_balls(const ModelInstance& inst) const {
     return inst.fields_accumulated.empty() || inst.desc->rates_stage;
 }
 
+// The radii and masses of the ends, for a model that reads the full columns
+// (a packed set's go to its model packed, from the bodies).
 void World::fill_pair_constants(ContactSet& set) const {
+    if (set.packed) return;
     for (std::size_t r = 0; r < set.size(); ++r) {
         const std::int32_t i = set.end1[r], j = set.end2[r];
         const double ri = bodies.radius[i], mi = bodies.mass[i];
         const double rj = set.with_wall ? 0.0 : bodies.radius[j], mj = set.with_wall ? kInf : bodies.mass[j];
         set.radius1[r] = ri;
         set.radius2[r] = rj;
-        if (set.packed) continue;  // the masses go to the model packed, from the bodies
         set.mass1[r] = mi;
         set.mass2[r] = mj;
         set.eff_mass[r] = set.with_wall ? mi : mi * mj / (mi + mj);  // a wall has infinite mass

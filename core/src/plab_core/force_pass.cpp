@@ -368,7 +368,7 @@ void World::sum_stiffness() const {
                 if (!s.active[k]) continue;
                 double arm2;
                 if (s.packed) {  // the contact point lies on the normal, its radius + half the gap from each centre
-                    const double arm = ((entries_[e].row & end2_bit) ? s.radius2[k] : s.radius1[k]) + 0.5 * s.gap[k];
+                    const double arm = end_radius(s, k, entries_[e].row & end2_bit) + 0.5 * s.gap[k];
                     arm2 = arm * arm;
                 } else {
                     arm2 = (Vec(&s.point[3 * k]) - bodies.position[i]).squaredNorm();

@@ -166,7 +166,7 @@ void World::check_overlaps() {
 
 void World::overlap_stop(const ModelInstance& inst, const ContactSet& s) {
     for (std::size_t k = 0; k < s.size(); ++k) {
-        const double r = s.with_wall ? s.radius1[k] : std::min(s.radius1[k], s.radius2[k]);
+        const double r = s.with_wall ? end_radius(s, k, false) : std::min(end_radius(s, k, false), end_radius(s, k, true));
         if (!s.active[k] || -s.gap[k] <= inst.max_overlap * r) continue;
         Diagnostic d;
         d.quantity = "overlap";

@@ -37,10 +37,11 @@ struct ContactSet {
     // back force and dt_limit only: moments, stiffness and energies stay
     // zero. A `packed` set (World::packs_balls: dense, and no model of the
     // world runs a rates stage over the full columns) does not even allocate distance, rel_velocity,
-    // rel_angular_velocity, mass1, mass2, eff_mass, eff_radius, strain,
-    // slip, dashpot and break_energy, nor normal and point: readers
-    // recompute those two from the positions and the gap
-    // (World::contact_normal/contact_point). ~170 B per row less.
+    // rel_angular_velocity, radius1, radius2, mass1, mass2, eff_mass,
+    // eff_radius, strain, slip, dashpot and break_energy, nor normal and
+    // point: readers recompute those two from the positions and the gap
+    // (World::contact_normal/contact_point), and take the radii from the
+    // bodies (World::end_radius). ~190 B per row less.
     bool packed = false;
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
@@ -242,6 +243,12 @@ public:
     // ball moved since), any other set's are read from its columns.
     Vec contact_normal(const ContactSet& s, std::size_t k) const;
     Vec contact_point(const ContactSet& s, std::size_t k) const;
+    // The radius of row k's end 1 or end 2 (a wall's: 0), from the bodies:
+    // a packed set keeps no radius columns, and a ball's radius changes
+    // only with the scene, which rebuilds the lists (mark_dirty()).
+    double end_radius(const ContactSet& s, std::size_t k, bool end2) const {
+        return end2 ? (s.with_wall ? 0.0 : bodies.radius[s.end2[k]]) : bodies.radius[s.end1[k]];
+    }
     // A row's key: the ball id of end 1 and the ball or facet id of end 2.
     // Derived from the ends, not stored (16 B per row): balls and facets are
     // only ever appended, so an index names the same body at every rebuild.
