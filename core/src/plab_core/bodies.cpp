@@ -17,6 +17,15 @@ void Bodies::enable_applied_loads() {
     applied_moment.resize(size(), Vec::Zero());
 }
 
+void Bodies::trim() {
+    for (auto* v : {&position, &velocity, &angular_velocity, &force, &moment, &applied_force, &applied_moment})
+        v->shrink_to_fit();
+    for (auto* v : {&radius, &mass, &inertia, &local_damping, &viscous_damping}) v->shrink_to_fit();
+    id.shrink_to_fit();
+    group.shrink_to_fit();
+    fixity.shrink_to_fit();
+}
+
 BodyId Bodies::add(const BallSpec& s) {
     const BodyId new_id = next_id++;
     id.push_back(new_id);

@@ -48,6 +48,9 @@ struct Bodies {
     BodyId add(const BallSpec& s);
     bool has_applied_loads() const { return !applied_force.empty(); }
     void enable_applied_loads();  // zero loads for every body, from here on kept
+    // Every column's block down to its size: add() grows them by doubling,
+    // which leaves up to half of each empty once the bodies are made.
+    void trim();
     // DOFs that can never move in this dimension (2D: z, rx, ry).
     std::uint8_t implicit_fixity() const { return dim == 2 ? (dof_z | dof_rx | dof_ry) : 0; }
 };

@@ -4,6 +4,7 @@
 // of their ends, and history is carried from the old list by that key.
 #include "world.hpp"
 
+#include "buffers.hpp"
 #include "error.hpp"
 
 #include <algorithm>
@@ -12,30 +13,6 @@
 #include <numeric>
 
 namespace plab {
-
-namespace {
-// v holds n copies of x. A list that outgrows its columns gets room for an
-// eighth more: the candidate count of a flow creeps up and down from one
-// rebuild to the next, and a reallocation at every new high would fault
-// the pages of every column in again. A column with no block yet (new, or
-// freed by a lean rebuild, which allocates anew every time) gets just n.
-template <class T>
-void fill(std::vector<T>& v, std::size_t n, T x) {
-    if (n > v.capacity()) {
-        const std::size_t room = v.capacity() == 0 ? n : n + n / 8;
-        std::vector<T>().swap(v);  // the old block goes first: no two copies at the peak
-        v.reserve(room);
-    }
-    v.assign(n, x);
-}
-
-// Frees v's block (`v = {}` would only clear it: that assigns an empty
-// initializer list and keeps the capacity).
-template <class V>
-void release(V& v) {
-    V().swap(v);
-}
-} // namespace
 
 bool ContactSet::keeps(std::uint32_t io_bit) const {
     if (!packed) return true;
@@ -55,7 +32,7 @@ void ContactSet::resize_columns(std::size_t n, int n_acc) {
         {&k_r, 1, PLAB_IO_STIFFNESS_ROTATIONAL}, {&dt_limit, 1, PLAB_IO_DT_LIMIT}};
     for (const auto& o : outputs) {
         if (keeps(o.bit)) fill(*o.col, o.width * n, 0.0);
-        else std::vector<double>().swap(*o.col);
+        else release(*o.col);
     }
     // what only the model reads, or only per-batch sums need: none when packed
     const std::size_t m = packed ? 0 : n;
@@ -66,7 +43,7 @@ void ContactSet::resize_columns(std::size_t n, int n_acc) {
     if (packed)  // not kept at all
         for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity, &distance, &radius1, &radius2, &mass1,
                         &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot, &break_energy})
-            std::vector<double>().swap(*v);
+            release(*v);
     acc1.resize(std::size_t(n_acc));
     acc2.resize(std::size_t(n_acc));
     for (auto* acc : {&acc1, &acc2})
@@ -83,11 +60,11 @@ std::vector<std::pair<const char*, std::vector<double>*>> ContactSet::double_col
 }
 
 void ContactSet::release_columns() {
-    for (auto* v : {&active, &interior}) std::vector<std::uint8_t>().swap(*v);
-    for (auto& [name, col] : double_columns()) std::vector<double>().swap(*col);
-    std::vector<double>().swap(batch_energy);
+    for (auto* v : {&active, &interior}) release(*v);
+    for (auto& [name, col] : double_columns()) release(*col);
+    release(batch_energy);
     for (auto* acc : {&acc1, &acc2})
-        for (auto& a : *acc) std::vector<double>().swap(a);
+        for (auto& a : *acc) release(a);
 }
 
 namespace {
@@ -188,8 +165,12 @@ void World::build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>
                     }
         }
     }
-    for (const auto& lists : block_pairs)
-        for (std::size_t m = 0; m < out.size(); ++m) out[m].insert(out[m].end(), lists[m].begin(), lists[m].end());
+    for (std::size_t m = 0; m < out.size(); ++m) {
+        std::size_t total = 0;
+        for (const auto& lists : block_pairs) total += lists[m].size();
+        clear_for(out[m], total);  // (out[m] is empty: rebuild() cleared it)
+        for (const auto& lists : block_pairs) out[m].insert(out[m].end(), lists[m].begin(), lists[m].end());
+    }
 }
 
 void World::build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const {
@@ -320,9 +301,12 @@ void World::rebuild() {
     std::size_t rows = 0;
     for (const auto& inst : instances_) rows += inst->balls.size() + inst->walls.size();
     const bool lean = rows > lean_rebuild_rows;
-    if (lean)  // install_pairs() lays the columns out anew, zeroed: nothing in them is carried over
+    if (lean) {  // install_pairs() lays the columns out anew, zeroed, and build_entries() makes these
         for (auto& inst : instances_)
             for (ContactSet* s : {&inst->balls, &inst->walls}) s->release_columns();
+        release(entries_);
+        release(partial_fm_);
+    }
     auto& ball_pairs = rebuild_scratch_.ball_pairs;  // cleared, not freed: the next rebuild fills as many
     auto& wall_pairs = rebuild_scratch_.wall_pairs;
     ball_pairs.resize(instances_.size());
@@ -375,7 +359,7 @@ void World::build_entries() {
         }
     }
     std::partial_sum(entry_start_.begin(), entry_start_.end(), entry_start_.begin());
-    entries_.resize(entry_start_[n]);
+    fill(entries_, std::size_t(entry_start_[n]), Entry{});
     std::vector<std::uint32_t> fill(entry_start_.begin(), entry_start_.end() - 1);
     constexpr std::uint32_t end2_bit = 1u << 31;
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
@@ -444,8 +428,7 @@ void World::build_chunks() {
         }
         set_chunks_.push_back(std::uint32_t(chunks_.size()));
     }
-    if (offset > partial_fm_.capacity()) std::vector<double>().swap(partial_fm_);  // no two copies at the peak
-    partial_fm_.assign(offset, 0.0);
+    fill(partial_fm_, offset, 0.0);
     // the columns were just made or loaded: nothing is known to be uniform,
     // and any row may hold history
     held_.resize(sets_.size());

@@ -2,6 +2,7 @@
 // Detection lives in detection.cpp, the force pass in force_pass.cpp.
 #include "world.hpp"
 
+#include "buffers.hpp"
 #include "error.hpp"
 
 #include <algorithm>
@@ -190,6 +191,7 @@ double World::effective_skin() const {
 }
 
 void World::prepare() {
+    bodies.trim();  // the scene is built: no more room for bodies than bodies
     resize_fields();
     k_trans_.assign(bodies.size(), 0.0);
     k_rot_.assign(bodies.size(), 0.0);
@@ -239,15 +241,21 @@ namespace {
 // row at its defaults is what the rebuild makes of a new pair.
 void keep_rows_with_history(const ModelInstance& inst, const ContactSet& c, std::vector<std::int32_t>& end1,
                             std::vector<std::int32_t>& end2, std::vector<double>& history) {
-    end1.clear();
-    end2.clear();
-    history.clear();
     const int stride = inst.stride;
-    for (std::size_t k = 0; k < c.size(); ++k) {
+    auto fresh = [&](std::size_t k) {
         const double* row = c.history.data() + k * stride;
-        bool fresh = true;
-        for (int h = 0; h < stride; ++h) fresh &= row[h] == inst.desc->history[h].default_value;
-        if (fresh) continue;
+        bool at_defaults = true;
+        for (int h = 0; h < stride; ++h) at_defaults &= row[h] == inst.desc->history[h].default_value;
+        return at_defaults;
+    };
+    std::size_t kept = 0;  // counted first: room for these rows, not up to twice as many (buffers.hpp)
+    for (std::size_t k = 0; k < c.size(); ++k) kept += !fresh(k);
+    clear_for(end1, kept);
+    clear_for(end2, kept);
+    clear_for(history, kept * stride);
+    for (std::size_t k = 0; k < c.size(); ++k) {
+        if (fresh(k)) continue;
+        const double* row = c.history.data() + k * stride;
         end1.push_back(c.end1[k]);
         end2.push_back(c.end2[k]);
         history.insert(history.end(), row, row + stride);
