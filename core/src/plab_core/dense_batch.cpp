@@ -26,7 +26,7 @@ struct RangeRows {
     const std::int32_t *end1, *end2;
     const double *radius, *history;  // radius: the bodies' (a packed set keeps none per row)
     const Vec* x;
-    double* gap_col;
+    double* gap_col;  // null: the set keeps no gaps (packed)
     std::uint8_t *active_col, *live;
 };
 // In two loops: the geometry and flags of every row first, then the lists.
@@ -43,7 +43,7 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
         const double dist = (c.x[c.end2[k]] - c.x[c.end1[k]]).norm();
         const double g = dist - c.radius[c.end1[k]] - c.radius[c.end2[k]];
         const bool active = in_range.in<ByDistance, Bonds>(c.history, k, dist, g);
-        c.gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
+        if (c.gap_col) c.gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
         dist_of[r] = dist;
         in[r] = active;
     }
@@ -78,7 +78,7 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
     // raw pointers: the byte stores below (flags) may alias anything, so
     // the compiler would otherwise reload every column's address per row
     const RangeRows c{s.end1.data(), s.end2.data(), bodies.radius.data(), s.history.data(),
-                      bodies.position.data(), s.gap.data(), s.active.data(), live_[si].data()};
+                      bodies.position.data(), s.packed ? nullptr : s.gap.data(), s.active.data(), live_[si].data()};
     std::uint32_t idle[kContactBatch];
     double unused[kContactBatch];  // where an output the caller does not take goes
     if (!distance) distance = unused;
@@ -140,9 +140,10 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
     return exceeded;
 }
 
-// A packed set's normal and point with the packers' arithmetic (the range
-// test's distance, centre_normal(), ball_contact_point()), not the whole
-// pair kinematics: a reader needs neither the velocities nor the spin.
+// A packed set's normal, point and gap with the packers' arithmetic (the
+// range test's distance and gap, centre_normal(), ball_contact_point()),
+// not the whole pair kinematics: a reader needs neither the velocities nor
+// the spin.
 Vec World::contact_normal(const ContactSet& s, std::size_t k) const {
     if (!s.packed) return Vec(&s.normal[3 * k]);
     const Vec &xi = bodies.position[s.end1[k]], &xj = bodies.position[s.end2[k]];
@@ -151,7 +152,14 @@ Vec World::contact_normal(const ContactSet& s, std::size_t k) const {
 
 Vec World::contact_point(const ContactSet& s, std::size_t k) const {
     if (!s.packed) return Vec(&s.point[3 * k]);
-    return ball_contact_point(bodies.position[s.end1[k]], contact_normal(s, k), bodies.radius[s.end1[k]], s.gap[k]);
+    return ball_contact_point(bodies.position[s.end1[k]], contact_normal(s, k), bodies.radius[s.end1[k]],
+                              contact_gap(s, k));
+}
+
+double World::contact_gap(const ContactSet& s, std::size_t k) const {
+    if (!s.packed) return s.gap[k];
+    const double dist = (bodies.position[s.end2[k]] - bodies.position[s.end1[k]]).norm();
+    return dist - bodies.radius[s.end1[k]] - bodies.radius[s.end2[k]];
 }
 
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols) {

@@ -11,6 +11,9 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 namespace plab {
 
@@ -25,7 +28,6 @@ void ContactSet::resize_columns(std::size_t n, int n_acc) {
     fill(active, n, std::uint8_t(0));
     fill(interior, with_wall ? n : 0, std::uint8_t(1));
     fill(force, 3 * n, 0.0);
-    fill(gap, n, 0.0);
     // outputs the model writes; the others not kept at all (keeps())
     const struct { std::vector<double>* col; std::size_t width; std::uint32_t bit; } outputs[] = {
         {&moment1, 3, PLAB_IO_MOMENTS}, {&moment2, 3, PLAB_IO_MOMENTS}, {&k_t, 1, 0},
@@ -37,12 +39,12 @@ void ContactSet::resize_columns(std::size_t n, int n_acc) {
     // what only the model reads, or only per-batch sums need: none when packed
     const std::size_t m = packed ? 0 : n;
     for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) fill(*v, 3 * m, 0.0);
-    for (auto* v : {&distance, &radius1, &radius2, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot,
-                    &break_energy})
+    for (auto* v : {&gap, &distance, &radius1, &radius2, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip,
+                    &dashpot, &break_energy})
         fill(*v, m, 0.0);
     if (packed)  // not kept at all
-        for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity, &distance, &radius1, &radius2, &mass1,
-                        &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot, &break_energy})
+        for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity, &gap, &distance, &radius1, &radius2,
+                        &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot, &break_energy})
             release(*v);
     acc1.resize(std::size_t(n_acc));
     acc2.resize(std::size_t(n_acc));
@@ -329,6 +331,14 @@ void World::rebuild() {
     need_rebuild_ = false;
     ++rebuilds;
     build_entries();
+#ifdef __GLIBC__
+    // A lean rebuild frees and makes blocks of megabytes. glibc keeps freed
+    // blocks in its heap (its mmap threshold rises to the largest block
+    // freed, so later ones come from the heap, which shrinks only from its
+    // top), and their pages would stay resident: ~15 MB on a settled pile of
+    // 1e5 balls. malloc_trim() gives the free pages back.
+    if (lean) malloc_trim(0);
+#endif
 }
 
 // Per-body lists of the contact rows touching each body, in (set, row)

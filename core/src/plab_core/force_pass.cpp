@@ -368,7 +368,7 @@ void World::sum_stiffness() const {
                 if (!s.active[k]) continue;
                 double arm2;
                 if (s.packed) {  // the contact point lies on the normal, its radius + half the gap from each centre
-                    const double arm = end_radius(s, k, entries_[e].row & end2_bit) + 0.5 * s.gap[k];
+                    const double arm = end_radius(s, k, entries_[e].row & end2_bit) + 0.5 * contact_gap(s, k);
                     arm2 = arm * arm;
                 } else {
                     arm2 = (Vec(&s.point[3 * k]) - bodies.position[i]).squaredNorm();
@@ -692,7 +692,7 @@ std::size_t World::bond(int a, int b, double gap_tolerance) {
         for (std::size_t k = 0; k < s.size(); ++k) {
             const int g1 = bodies.group[s.end1[k]], g2 = bodies.group[s.end2[k]];
             if (!((g1 == a && g2 == b) || (g1 == b && g2 == a))) continue;
-            if (s.gap[k] > gap_tolerance) continue;
+            if (contact_gap(s, k) > gap_tolerance) continue;
             s.history[k * inst->stride + slot] = 1;
             ++made;
         }

@@ -1,7 +1,7 @@
 // The range test before the passes of phase RATES_DONE, when a rates-stage
 // model's own stage is skipped (summation density: docs/sph.md) and its
 // forces come from the packed sweep after those passes. One sweep over the
-// candidates sets the active flags and gaps every reader sees, lists the
+// candidates sets the active flags (and gaps) every reader sees, lists the
 // passes' contacts (what build_pass_contacts() would list, in the same
 // order) with their centre distance (the passes' contact_distance, abi.h
 // ABI 6: summation density needs no square root of its own) and, for the

@@ -167,11 +167,12 @@ void World::check_overlaps() {
 void World::overlap_stop(const ModelInstance& inst, const ContactSet& s) {
     for (std::size_t k = 0; k < s.size(); ++k) {
         const double r = s.with_wall ? end_radius(s, k, false) : std::min(end_radius(s, k, false), end_radius(s, k, true));
-        if (!s.active[k] || -s.gap[k] <= inst.max_overlap * r) continue;
+        const double gap = contact_gap(s, k);
+        if (!s.active[k] || -gap <= inst.max_overlap * r) continue;
         Diagnostic d;
         d.quantity = "overlap";
         d.subject = contact_name(inst, s, k);
-        d.detail = "overlap " + short_number(-s.gap[k]) + " m is " + short_number(-s.gap[k] / r) + " x the smaller radius " + short_number(r) +
+        d.detail = "overlap " + short_number(-gap) + " m is " + short_number(-gap / r) + " x the smaller radius " + short_number(r) +
                    " m, above the limit " + short_number(inst.max_overlap) + " (contact_models[].max_overlap)";
         d.cause = "the contact is too soft for the load or the impact speed (the overlap of an impact grows as "
                   "v sqrt(m/k)): raise the stiffness or lower the speed";

@@ -669,7 +669,7 @@ std::string World::non_finite_contact(std::size_t body) const {
                 std::ostringstream s;
                 s << "contact model '" << inst->model << "' returned a non-finite force or moment (a contact model returned NaN) for the contact of ball id "
                   << bodies.id[set->end1[k]] << (set->with_wall ? " with a wall" : " and ball id " + std::to_string(bodies.id[set->end2[k]]))
-                  << " at gap " << set->gap[k] << " m: check its law for division by zero, sqrt or log of a negative "
+                  << " at gap " << contact_gap(*set, k) << " m: check its law for division by zero, sqrt or log of a negative "
                   << "number, or use of history before it is set";
                 return s.str();
             }

@@ -38,10 +38,10 @@ struct ContactSet {
     // zero. A `packed` set (World::packs_balls: dense, and no model of the
     // world runs a rates stage over the full columns) does not even allocate distance, rel_velocity,
     // rel_angular_velocity, radius1, radius2, mass1, mass2, eff_mass,
-    // eff_radius, strain, slip, dashpot and break_energy, nor normal and
-    // point: readers recompute those two from the positions and the gap
-    // (World::contact_normal/contact_point), and take the radii from the
-    // bodies (World::end_radius). ~190 B per row less.
+    // eff_radius, strain, slip, dashpot and break_energy, nor gap, normal
+    // and point: readers recompute those three from the positions
+    // (World::contact_gap/contact_normal/contact_point), and take the radii
+    // from the bodies (World::end_radius). ~200 B per row less.
     bool packed = false;
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
@@ -243,6 +243,7 @@ public:
     // ball moved since), any other set's are read from its columns.
     Vec contact_normal(const ContactSet& s, std::size_t k) const;
     Vec contact_point(const ContactSet& s, std::size_t k) const;
+    double contact_gap(const ContactSet& s, std::size_t k) const;  // (the same: the range test's arithmetic)
     // The radius of row k's end 1 or end 2 (a wall's: 0), from the bodies:
     // a packed set keeps no radius columns, and a ball's radius changes
     // only with the scene, which rebuilds the lists (mark_dirty()).
