@@ -211,9 +211,10 @@ public:
     // leaves step(), so outputs and the caller see the last good state.
     std::uint64_t snapshot_interval = 100;
     // Above this many candidate rows a rebuild keeps nothing twice: the
-    // columns go before the new lists are built, the scratch after (a big
-    // world rebuilds every hundred steps or so, and the memory matters: 18 MB
-    // of 198 on a settled pile of 1e5 balls; smaller worlds, such as the SPH
+    // columns, entries and partial sums go before the new lists are built,
+    // the scratch after (a big world rebuilds every hundred steps or so, and
+    // the memory matters: the kept scratch would be ~20 MB beside the 94 MiB
+    // peak of a settled pile of 1e5 balls; smaller worlds, such as the SPH
     // scene that rebuilds every few steps, keep their buffers, so the cycle
     // allocates nothing). Results are the same bits either way.
     std::size_t lean_rebuild_rows = std::size_t(1) << 18;
