@@ -42,7 +42,7 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         // radii and masses from the bodies (in cache) rather than the set's
         // long columns, with fill_pair_constants()'s arithmetic
         const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
-        const double dist = d.distance[a], gap = dist - ri - rj;  // the range test's arithmetic
+        const double dist = d.distance[a], gap = surface_gap(dist, ri, rj);
         d.gap[a] = gap;
         const Vec normal = centre_normal(B.position[i], B.position[j], dist);
         d.end1[a] = i;

@@ -41,7 +41,7 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
     for (std::size_t r = 0; r < n; ++r) {
         const std::size_t k = begin + r;
         const double dist = (c.x[c.end2[k]] - c.x[c.end1[k]]).norm();
-        const double g = dist - c.radius[c.end1[k]] - c.radius[c.end2[k]];
+        const double g = surface_gap(dist, c.radius[c.end1[k]], c.radius[c.end2[k]]);
         const bool active = in_range.in<ByDistance, Bonds>(c.history, k, dist, g);
         if (c.gap_col) c.gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
         dist_of[r] = dist;
@@ -112,7 +112,7 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         const std::size_t k = d.row[a];
         const std::int32_t i = s.end1[k], j = s.end2[k];
         const double ri = B.radius[i], rj = B.radius[j], dist = d.distance[a];
-        const double gap = dist - ri - rj;  // the range test's arithmetic
+        const double gap = surface_gap(dist, ri, rj);
         d.gap[a] = gap;
         const PairKinematics p = ball_pair_kinematics(B, i, j, ri, dist, gap);
         d.end1[a] = i;
@@ -159,7 +159,7 @@ Vec World::contact_point(const ContactSet& s, std::size_t k) const {
 double World::contact_gap(const ContactSet& s, std::size_t k) const {
     if (!s.packed) return s.gap[k];
     const double dist = (bodies.position[s.end2[k]] - bodies.position[s.end1[k]]).norm();
-    return dist - bodies.radius[s.end1[k]] - bodies.radius[s.end2[k]];
+    return surface_gap(dist, bodies.radius[s.end1[k]], bodies.radius[s.end2[k]]);
 }
 
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols) {

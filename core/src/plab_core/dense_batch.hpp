@@ -149,6 +149,11 @@ inline void scatter_history(double* set, const double* dense, const std::uint32_
     else scatter_history_rows<0>(set, dense, row, n, stride);
 }
 
+// The surface gap of two balls at centre distance dist: every ball–ball
+// path (the range test, both packers, World::contact_gap) takes it from
+// here, so a gap recomputed for a reader has the range test's bits.
+inline double surface_gap(double dist, double ri, double rj) { return dist - ri - rj; }
+
 // The contact geometry of balls i and j at centre distance `dist`, gap `gap`:
 // normal from i to j, contact point in the middle of the overlap, and the
 // velocities of j relative to i at that point.

@@ -124,8 +124,8 @@ void World::build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>
     }
     std::partial_sum(start.begin(), start.end(), start.begin());
     {
-        std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
-        for (std::size_t i = 0; i < n; ++i) items[fill[home[i]]++] = std::int32_t(i);
+        std::vector<std::int32_t> next(start.begin(), start.end() - 1);  // each cell's next free slot
+        for (std::size_t i = 0; i < n; ++i) items[next[home[i]]++] = std::int32_t(i);
     }
     const int ng = int(groups_.size());
     const long zr = dim == 3 ? 1 : 0;
@@ -370,14 +370,14 @@ void World::build_entries() {
     }
     std::partial_sum(entry_start_.begin(), entry_start_.end(), entry_start_.begin());
     fill(entries_, std::size_t(entry_start_[n]), Entry{});
-    std::vector<std::uint32_t> fill(entry_start_.begin(), entry_start_.end() - 1);
+    std::vector<std::uint32_t> next(entry_start_.begin(), entry_start_.end() - 1);  // each body's next free entry
     constexpr std::uint32_t end2_bit = 1u << 31;
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         const ContactSet* s = sets_[si];
         if (!listed(si)) continue;
         for (std::uint32_t k = 0; k < s->size(); ++k) {
-            entries_[fill[s->end1[k]]++] = {si, k};
-            if (!s->with_wall) entries_[fill[s->end2[k]]++] = {si, k | end2_bit};
+            entries_[next[s->end1[k]]++] = {si, k};
+            if (!s->with_wall) entries_[next[s->end2[k]]++] = {si, k | end2_bit};
         }
     }
     build_chunks();
