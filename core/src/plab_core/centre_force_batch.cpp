@@ -72,17 +72,33 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     const std::int32_t lo = ch.lo;
     double *force = s.force.data(), *dt_limit = s.dt_limit.data();
     const bool with_dt_limit = inst.uses(PLAB_IO_DT_LIMIT);  // (the set keeps the column then: ContactSet::keeps)
+    // The rows of one end 1 come in a run (a neighbour list): its sum is
+    // kept in registers over the run, not loaded and stored back per row,
+    // which made every row wait for the previous one's store. The sums are
+    // the same in the same order, so the bits are too.
+    std::int32_t held_body = -1;
+    double* held = fm;
+    double sx = 0, sy = 0, sz = 0;  // (locals, not an array: GCC kept an array on the stack)
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
         copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
         if (with_dt_limit) dt_limit[k] = d.dt_limit[a];  // (a per-pair CFL limit: seldom uniform, so no write_back())
-        double* f1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
-        double* f2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
-        for (int c = 0; c < 3; ++c) {
-            f1[c] -= d.force[3 * a + c];
-            f2[c] += d.force[3 * a + c];
+        const double fx = d.force[3 * a], fy = d.force[3 * a + 1], fz = d.force[3 * a + 2];
+        if (d.end1[a] != held_body) {
+            if (held_body >= 0) { held[0] = sx; held[1] = sy; held[2] = sz; }
+            held_body = d.end1[a];
+            held = fm + kSlotDoubles * std::size_t(held_body - lo);
+            sx = held[0]; sy = held[1]; sz = held[2];
         }
+        sx -= fx; sy -= fy; sz -= fz;
+        if (d.end2[a] == held_body) {  // (a body paired with itself: not in a neighbour list, but kept in order)
+            sx += fx; sy += fy; sz += fz;
+            continue;
+        }
+        double* f2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
+        f2[0] += fx; f2[1] += fy; f2[2] += fz;
     }
+    if (held_body >= 0) { held[0] = sx; held[1] = sy; held[2] = sz; }
     scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
     // (the batch's energy sums stay zero: force_sweep cleared them)
 }
