@@ -438,20 +438,41 @@ private:
         // q = r/h as r (1/h): a square root and a division per pair kept the
         // divider busy; q changes by rounding only
         const double inv_h = 1.0 / h_;
+        // The pairs of one end i come in a run (a neighbour list): i's sums
+        // are held in locals over the run, not loaded and stored per pair,
+        // which made each pair wait for the previous one's store. Same sums
+        // in the same order: the same bits.
+        std::int32_t held_i = -1;
+        double held_mass = 0, held_volume = 0;
+        auto put_back = [&] {
+            if (held_i < 0) return;
+            sum[stride * std::size_t(held_i)] = held_mass;
+            if (normalised_) sum[stride * std::size_t(held_i) + 1] = held_volume;
+        };
         for (std::size_t k = k0; k < k1; ++k) {
             if (v.contact_end2_is_wall[k]) continue;
             const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
             const double r = v.contact_distance ? v.contact_distance[k] : distance(v, i, j);  // (ABI 6)
             if (r >= support) continue;
             const double w = norm * plab::sph::detail::shape(kind_, r * inv_h);
-            double* sum_i = sum + stride * std::size_t(i);
+            if (i != held_i) {
+                put_back();
+                held_i = i;
+                held_mass = sum[stride * std::size_t(i)];
+                if (normalised_) held_volume = sum[stride * std::size_t(i) + 1];
+            }
+            held_mass += v.mass[j] * w;
+            if (normalised_) held_volume += v.mass[j] / rho[j] * w;
+            if (j == held_i) {  // (a ball paired with itself: not in a neighbour list, but kept in order)
+                held_mass += v.mass[i] * w;
+                if (normalised_) held_volume += v.mass[i] / rho[i] * w;
+                continue;
+            }
             double* sum_j = sum + stride * std::size_t(j);
-            sum_i[0] += v.mass[j] * w;
             sum_j[0] += v.mass[i] * w;
-            if (!normalised_) continue;
-            sum_i[1] += v.mass[j] / rho[j] * w;
-            sum_j[1] += v.mass[i] / rho[i] * w;
+            if (normalised_) sum_j[1] += v.mass[i] / rho[i] * w;
         }
+        put_back();
     }
 
     // |x_j - x_i| with the host's arithmetic (its range test: the same bits
