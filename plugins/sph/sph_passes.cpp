@@ -387,23 +387,45 @@ struct SphDensitySummation {
         for (std::size_t c = 0; c < n_chunks; ++c)
             sum_chunk(v, W, c * per_chunk, std::min<std::size_t>(v.contact_count, (c + 1) * per_chunk),
                       partial_.data() + c * width, first_[c], last_[c]);
-        double* rho = v.fields[density];
-#pragma omp parallel for schedule(static) if (n >= 4096)
-        for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
-            if (v.group[i] == boundary_) continue;
-            double mass_sum = 0, volume_sum = 0;  // the chunks' sums in chunk order
-            for (std::size_t c = 0; c < n_chunks; ++c) {
-                if (i < first_[c] || i > last_[c]) continue;  // (its sums are zero: x + 0 is x)
-                const double* sum = partial_.data() + c * width + stride() * std::size_t(i);
-                mass_sum += sum[0];
-                if (normalised_) volume_sum += sum[1];
-            }
-            const double mass = mass_sum + v.mass[i] * w0;  // eq. 8 includes j = i
-            rho[i] = normalised_ ? mass / (volume_sum + v.mass[i] / rho[i] * w0) : mass;
-        }
+        add_chunks(v, n_chunks, w0);
     }
 
 private:
+    // Each body's chunk sums added in chunk order, then its own term: chunk
+    // by chunk over blocks of bodies, a streaming loop, rather than body by
+    // body over the chunks (a test per chunk and body; once the fluid has
+    // mixed, every chunk's band spans nearly all bodies). Same additions in
+    // the same order: the same bits.
+    void add_chunks(const plab_pass_view& v, std::size_t n_chunks, double w0) {
+        const std::size_t n = v.body_count, width = stride() * n;
+        mass_sum_.assign(n, 0.0);
+        if (normalised_) volume_sum_.assign(n, 0.0);
+        double* rho = v.fields[density];
+        constexpr std::int64_t kBlock = 2048;
+        const std::int64_t n_blocks = (std::int64_t(n) + kBlock - 1) / kBlock;
+#pragma omp parallel for schedule(static) if (n >= 4096)
+        for (std::int64_t b = 0; b < n_blocks; ++b) {
+            const std::int64_t i0 = b * kBlock, i1 = std::min<std::int64_t>(std::int64_t(n), i0 + kBlock);
+            for (std::size_t c = 0; c < n_chunks; ++c) {  // (outside its band a chunk's sums are zero: x + 0 is x)
+                const std::int64_t c0 = std::max(i0, first_[c]), c1 = std::min(i1, last_[c] + 1);
+                const double* sum = partial_.data() + c * width;
+                if (!normalised_) {
+                    for (std::int64_t i = c0; i < c1; ++i) mass_sum_[i] += sum[i];
+                    continue;
+                }
+                for (std::int64_t i = c0; i < c1; ++i) {
+                    mass_sum_[i] += sum[2 * i];
+                    volume_sum_[i] += sum[2 * i + 1];
+                }
+            }
+            for (std::int64_t i = i0; i < i1; ++i) {
+                if (v.group[i] == boundary_) continue;
+                const double mass = mass_sum_[i] + v.mass[i] * w0;  // eq. 8 includes j = i
+                rho[i] = normalised_ ? mass / (volume_sum_[i] + v.mass[i] / rho[i] * w0) : mass;
+            }
+        }
+    }
+
     // The pairs are summed in chunks of contacts, each into its own partial
     // sums over the bodies its pairs touch (first to last index, usually a
     // narrow band: bodies are numbered along the lattice and pairs listed by
@@ -488,7 +510,7 @@ private:
     double h_;
     int boundary_;
     bool normalised_;
-    std::vector<double> partial_;
+    std::vector<double> partial_, mass_sum_, volume_sum_;
     std::vector<std::int64_t> first_, last_;  // each chunk's bodies
 };
 
