@@ -68,7 +68,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
                                std::size_t begin, const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);
-    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
+    double* fm = partial_fm_.data() + ch.offset;  // body i at kForceDoubles * (i - lo): no moment (Chunk::width)
     const std::int32_t lo = ch.lo;
     double *force = s.force.data(), *dt_limit = s.dt_limit.data();
     const bool with_dt_limit = inst.uses(PLAB_IO_DT_LIMIT);  // (the set keeps the column then: ContactSet::keeps)
@@ -87,7 +87,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
         if (d.end1[a] != held_body) {
             if (held_body >= 0) { held[0] = sx; held[1] = sy; held[2] = sz; }
             held_body = d.end1[a];
-            held = fm + kSlotDoubles * std::size_t(held_body - lo);
+            held = fm + kForceDoubles * std::size_t(held_body - lo);
             sx = held[0]; sy = held[1]; sz = held[2];
         }
         sx -= fx; sy -= fy; sz -= fz;
@@ -95,7 +95,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
             sx += fx; sy += fy; sz += fz;
             continue;
         }
-        double* f2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
+        double* f2 = fm + kForceDoubles * std::size_t(d.end2[a] - lo);
         f2[0] += fx; f2[1] += fy; f2[2] += fz;
     }
     if (held_body >= 0) { held[0] = sx; held[1] = sy; held[2] = sz; }

@@ -241,8 +241,9 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     bool exceeded = false;
 #pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)
     for (std::uint32_t c = c0; c < c1; ++c) {
-        const Chunk& ch = chunks_[c];
-        std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * ch.slots, 0.0);
+        Chunk& ch = chunks_[c];
+        ch.width = dense && at_centres ? kForceDoubles : kSlotDoubles;
+        std::fill_n(partial_fm_.data() + ch.offset, ch.width * ch.slots, 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
             const std::size_t m = std::min(kContactBatch, ch.end - o);
             if (dense && at_centres) {  // SPH: no spin, moments, stiffness or energies
@@ -341,7 +342,8 @@ void World::scatter_to_chunks(std::uint32_t si) {
     sets_[si]->batch_energy.assign(kBatchEnergies * ((n + kContactBatch - 1) / kContactBatch), 0.0);
 #pragma omp parallel for schedule(dynamic) if (n >= parallel_min)
     for (std::uint32_t c = set_chunks_[si]; c < set_chunks_[si + 1]; ++c) {
-        const Chunk& ch = chunks_[c];
+        Chunk& ch = chunks_[c];
+        ch.width = kSlotDoubles;
         std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * ch.slots, 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch)
             scatter_rows(si, o, std::min(ch.end, o + kContactBatch), ch);
@@ -441,6 +443,10 @@ void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
             continue;
         }
         const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
+        if (ch.width == kForceDoubles) {  // no moments (centre-force path)
+            for (std::size_t i = c0; i < c1; ++i) force[i] += Vec(p + kForceDoubles * (i - std::size_t(ch.lo)));
+            continue;
+        }
         for (std::size_t i = c0; i < c1; ++i) {
             const double* pi = p + kSlotDoubles * (i - std::size_t(ch.lo));
             force[i] += Vec(pi);

@@ -297,7 +297,7 @@ private:
     // order, into its own partial array over the bodies it touches (lo..hi,
     // kSlotDoubles per body: force, moment), and reduce() adds the partials
     // to each body in chunk order: the same sums for any thread count.
-    static constexpr std::size_t kSlotDoubles = 6;
+    static constexpr std::size_t kSlotDoubles = 6, kForceDoubles = 3;
     struct Chunk {
         std::uint32_t set;
         std::size_t begin, end;  // rows
@@ -308,6 +308,10 @@ private:
         // of them), only the balls it touches: chunk_bodies_[first_listed..]
         // ascending, row k's ball at slot listed_slot_[set][k].
         std::size_t slots = 0;
+        // doubles per slot in the last sweep: kSlotDoubles, or 3 (the force
+        // alone) on the centre-force path, which has no moments: half the
+        // partials to clear, scatter into and add (the block stays sized for 6)
+        std::size_t width = kSlotDoubles;
         bool listed = false;
         std::size_t first_listed = 0;
     };
