@@ -70,8 +70,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     const std::size_t stride = std::size_t(inst.stride);
     double* fm = partial_fm_.data() + ch.offset;  // body i at kForceDoubles * (i - lo): no moment (Chunk::width)
     const std::int32_t lo = ch.lo;
-    double *force = s.force.data(), *dt_limit = s.dt_limit.data();
-    const bool with_dt_limit = inst.uses(PLAB_IO_DT_LIMIT);  // (the set keeps the column then: ContactSet::keeps)
+    double* force = s.force.data();
     // The rows of one end 1 come in a run (a neighbour list): its sum is
     // kept in registers over the run, not loaded and stored back per row,
     // which made every row wait for the previous one's store. The sums are
@@ -82,7 +81,6 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
         copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
-        if (with_dt_limit) dt_limit[k] = d.dt_limit[a];  // (a per-pair CFL limit: seldom uniform, so no write_back())
         const double fx = d.force[3 * a], fy = d.force[3 * a + 1], fz = d.force[3 * a + 2];
         if (d.end1[a] != held_body) {
             if (held_body >= 0) { held[0] = sx; held[1] = sy; held[2] = sz; }
@@ -99,6 +97,11 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
         f2[0] += fx; f2[1] += fy; f2[2] += fz;
     }
     if (held_body >= 0) { held[0] = sx; held[1] = sy; held[2] = sz; }
+    if (inst.uses(PLAB_IO_DT_LIMIT)) {  // the batch's least step limit, its first row (World::batch_limits_)
+        BatchLimit& least = batch_limits_[si][begin / kContactBatch];
+        for (std::size_t a = 0; a < d.count; ++a)
+            if (d.dt_limit[a] < least.dt) least = {d.dt_limit[a], d.row[a]};
+    }
     scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
     // (the batch's energy sums stay zero: force_sweep cleared them)
 }

@@ -381,6 +381,7 @@ void World::build_entries() {
         }
     }
     build_chunks();
+    clear_batch_limits();  // (rows of the old list)
     any_accumulation_ = false;
     for (auto& inst : instances_) any_accumulation_ |= !inst->desc->rates_stage && !inst->fields_accumulated.empty();
 }

@@ -237,6 +237,8 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     const bool dense = with_geometry && (inst.fields_accumulated.empty() || inst.desc->rates_stage);
     const bool at_centres = (inst.desc->flags & PLAB_MODEL_FORCE_AT_CENTRES) != 0;
     const std::uint32_t c0 = set_chunks_[si], c1 = set_chunks_[si + 1];
+    if (dense && at_centres && inst.uses(PLAB_IO_DT_LIMIT))
+        batch_limits_[si].assign((n + kContactBatch - 1) / kContactBatch, BatchLimit{kInf, 0});
     int failed = 0;
     bool exceeded = false;
 #pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)
@@ -620,16 +622,22 @@ StableStep World::stable_timestep() {
     const ModelInstance* limit_model = nullptr;
     const ContactSet* limit_set = nullptr;
     std::size_t limit_row = 0;
-    for (auto& inst : instances_)
-        for (const ContactSet* s : {&inst->balls, &inst->walls}) {
-            if (s->dt_limit.empty()) continue;  // a set that keeps no step limit has none (ContactSet::keeps)
-            for (std::size_t k = 0; k < s->size(); ++k)
-                if (s->active[k] && s->dt_limit[k] < best.critical) {
-                    best.critical = s->dt_limit[k];
-                    limit_model = inst.get(); limit_set = s; limit_row = k;
-                    ball = bodies.size();
-                }
+    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
+        const ContactSet* s = sets_[si];
+        auto consider = [&](double dt, std::size_t k) {
+            if (!(dt < best.critical)) return;
+            best.critical = dt;
+            limit_model = set_owner_[si]; limit_set = s; limit_row = k;
+            ball = bodies.size();
+        };
+        if (si < batch_limits_.size() && !batch_limits_[si].empty()) {  // (their rows are active)
+            for (const BatchLimit& b : batch_limits_[si]) consider(b.dt, b.row);
+            continue;
         }
+        if (s->dt_limit.empty()) continue;  // a set that keeps no step limit has none (ContactSet::keeps)
+        for (std::size_t k = 0; k < s->size(); ++k)
+            if (s->active[k]) consider(s->dt_limit[k], k);
+    }
     if (limit_model) {
         best.limited_by = "model " + limit_model->model + " for groups " + contact_groups(*limit_set, limit_row) +
                           ": its step limit";

@@ -340,6 +340,19 @@ private:
     // the centre-force path (`listed`, for pack_centre_rows()) their centre
     // distances too.
     struct RowsInRange { std::vector<std::uint32_t> row, count; std::vector<double> distance; bool listed = false; };
+    // The step limits (abi.h, dt_limit) of set si's centre-force sweep, per
+    // batch: the least over its rows and the first row that has it, which
+    // is all stable_timestep() takes from them. A per-pair limit (SPH's CFL)
+    // is seldom uniform, and writing it row by row into a column as long as
+    // the candidate list cost a cache miss per pair. Empty: the set's
+    // dt_limit column holds its limits (cleared at every force pass and
+    // rebuild, so never older than the rows).
+    struct BatchLimit { double dt; std::uint32_t row; };
+    std::vector<std::vector<BatchLimit>> batch_limits_;
+    void clear_batch_limits() {
+        batch_limits_.resize(sets_.size());
+        for (auto& b : batch_limits_) b.clear();
+    }
     std::vector<RowsInRange> in_range_;
     void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end, const Chunk& chunk);
     void scatter_to_chunks(std::uint32_t set_index);
@@ -458,6 +471,11 @@ private:
     void mark_ball_rows_in_range();  // pass_contacts.cpp
     void mark_set_in_range(std::uint32_t set_index, bool list);
     void append_pass_contacts(std::uint32_t set_index);
+    // The pass-contact columns hold at least n rows. They are refilled every
+    // cycle without being emptied first: resizing an emptied vector would
+    // clear the whole list (~2 MB on the dam break) only to overwrite it.
+    void grow_pass_contacts(std::size_t n);
+    std::size_t pc_listed_ = 0;  // rows of the pass-contact columns listed so far this cycle
     void accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i);
     void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);
