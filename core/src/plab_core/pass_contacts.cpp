@@ -23,25 +23,44 @@ bool on_centre_path(const ModelInstance& inst) {
 
 void World::mark_ball_rows_in_range() {
     const bool list = !passes_.empty();
-    if (list) { pc_end1_.clear(); pc_end2_.clear(); pc_wall_.clear(); pc_distance_.clear(); }
+    pc_listed_ = 0;
     in_range_.resize(sets_.size());
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         ContactSet& s = *sets_[si];
         in_range_[si].listed = false;
         if (s.with_wall) {  // geometry() set their flags
-            if (list)
+            if (list) {
+                std::size_t m = 0;
+                for (std::size_t k = 0; k < s.size(); ++k) m += s.active[k] != 0;
+                grow_pass_contacts(pc_listed_ + m);
                 for (std::size_t k = 0; k < s.size(); ++k)
                     if (s.active[k]) {
-                        pc_end1_.push_back(s.end1[k]);
-                        pc_end2_.push_back(s.end2[k]);
-                        pc_wall_.push_back(1);
-                        pc_distance_.push_back(s.distance[k]);
+                        pc_end1_[pc_listed_] = s.end1[k];
+                        pc_end2_[pc_listed_] = s.end2[k];
+                        pc_wall_[pc_listed_] = 1;
+                        pc_distance_[pc_listed_] = s.distance[k];
+                        ++pc_listed_;
                     }
+            }
             continue;
         }
         mark_set_in_range(si, list);
     }
+    if (list) {  // down to the rows listed (a shrink: nothing cleared)
+        pc_end1_.resize(pc_listed_);
+        pc_end2_.resize(pc_listed_);
+        pc_wall_.resize(pc_listed_);
+        pc_distance_.resize(pc_listed_);
+    }
     in_range_marked_ = true;
+}
+
+void World::grow_pass_contacts(std::size_t n) {
+    if (pc_end1_.size() >= n) return;  // (only the new tail is cleared)
+    pc_end1_.resize(n);
+    pc_end2_.resize(n);
+    pc_wall_.resize(n);
+    pc_distance_.resize(n);
 }
 
 // Set si's candidates, batch by batch (threads take whole batches), with
@@ -74,14 +93,12 @@ void World::mark_set_in_range(std::uint32_t si, bool list) {
 void World::append_pass_contacts(std::uint32_t si) {
     const ContactSet& s = *sets_[si];
     const RowsInRange& r = in_range_[si];
-    const std::size_t n_batches = r.count.size(), base = pc_end1_.size();
+    const std::size_t n_batches = r.count.size(), base = pc_listed_;
     batch_at_.resize(n_batches);  // where each batch's rows start in the list
     std::size_t total = 0;
     for (std::size_t b = 0; b < n_batches; ++b) { batch_at_[b] = base + total; total += r.count[b]; }
-    pc_end1_.resize(base + total);
-    pc_end2_.resize(base + total);
-    pc_wall_.resize(base + total, 0);
-    pc_distance_.resize(base + total);
+    grow_pass_contacts(base + total);
+    pc_listed_ = base + total;
 #pragma omp parallel for schedule(static) if (s.size() >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::uint32_t* row = r.row.data() + b * kContactBatch;
@@ -91,6 +108,7 @@ void World::append_pass_contacts(std::uint32_t si) {
             pc_end2_[at + a] = s.end2[row[a]];
         }
         std::copy_n(r.distance.data() + b * kContactBatch, r.count[b], pc_distance_.data() + at);
+        std::fill_n(pc_wall_.data() + at, r.count[b], std::uint8_t(0));
     }
 }
 
