@@ -20,7 +20,8 @@ namespace plab {
 bool ContactSet::keeps(std::uint32_t io_bit) const {
     if (!packed) return true;
     const bool written = !(model_io & PLAB_IO_DECLARED) || (model_io & io_bit);
-    if (model_flags & PLAB_MODEL_FORCE_AT_CENTRES) return io_bit == PLAB_IO_DT_LIMIT && written;  // no moment, no stiffness
+    // no moment, no stiffness; step limits per batch (World::batch_limits_)
+    if (model_flags & PLAB_MODEL_FORCE_AT_CENTRES) return false;
     return io_bit == 0 || written;
 }
 
