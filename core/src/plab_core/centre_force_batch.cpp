@@ -68,7 +68,9 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
                                std::size_t begin, const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);
-    double* fm = partial_fm_.data() + ch.offset;  // body i at kForceDoubles * (i - lo): no moment (Chunk::width)
+    double* fm = partial_fm_.data() + ch.offset;  // body i at width * (i - lo): forces only (Chunk::forces_only)
+    const std::size_t width = slot_width(true);
+    const bool with_z = width == 3;  // (2D: fx, fy)
     const std::int32_t lo = ch.lo;
     double* force = s.force.data();
     // The rows of one end 1 come in a run (a neighbour list): its sum is
@@ -78,25 +80,34 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     std::int32_t held_body = -1;
     double* held = fm;
     double sx = 0, sy = 0, sz = 0;  // (locals, not an array: GCC kept an array on the stack)
+    const auto put_back = [&] {
+        held[0] = sx;
+        held[1] = sy;
+        if (with_z) held[2] = sz;
+    };
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
         copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
         const double fx = d.force[3 * a], fy = d.force[3 * a + 1], fz = d.force[3 * a + 2];
         if (d.end1[a] != held_body) {
-            if (held_body >= 0) { held[0] = sx; held[1] = sy; held[2] = sz; }
+            if (held_body >= 0) put_back();
             held_body = d.end1[a];
-            held = fm + kForceDoubles * std::size_t(held_body - lo);
-            sx = held[0]; sy = held[1]; sz = held[2];
+            held = fm + width * std::size_t(held_body - lo);
+            sx = held[0];
+            sy = held[1];
+            if (with_z) sz = held[2];
         }
         sx -= fx; sy -= fy; sz -= fz;
         if (d.end2[a] == held_body) {  // (a body paired with itself: not in a neighbour list, but kept in order)
             sx += fx; sy += fy; sz += fz;
             continue;
         }
-        double* f2 = fm + kForceDoubles * std::size_t(d.end2[a] - lo);
-        f2[0] += fx; f2[1] += fy; f2[2] += fz;
+        double* f2 = fm + width * std::size_t(d.end2[a] - lo);
+        f2[0] += fx;
+        f2[1] += fy;
+        if (with_z) f2[2] += fz;
     }
-    if (held_body >= 0) { held[0] = sx; held[1] = sy; held[2] = sz; }
+    if (held_body >= 0) put_back();
     if (inst.uses(PLAB_IO_DT_LIMIT)) {  // the batch's least step limit, its first row (World::batch_limits_)
         BatchLimit& least = batch_limits_[si][begin / kContactBatch];
         for (std::size_t a = 0; a < d.count; ++a)

@@ -198,7 +198,8 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
                         const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);
-    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo)
+    double* fm = partial_fm_.data() + ch.offset;  // body i at width * (i - lo)
+    const std::size_t width = slot_width(false);
     const std::int32_t lo = ch.lo;
     const bool pure_moments = inst.uses(PLAB_IO_MOMENTS), breaks = inst.uses(PLAB_IO_BREAK_ENERGY);
     double strain = 0, slip = 0, dashpot = 0, broken = 0;
@@ -217,10 +218,8 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
         Vec m1 = Vec(&d.arm1[3 * a]).cross(-f2);
         Vec m2 = Vec(&d.arm2[3 * a]).cross(f2);
         if (pure_moments) { m1 += Vec(&d.moment1[3 * a]); m2 += Vec(&d.moment2[3 * a]); }
-        double* f1m1 = fm + kSlotDoubles * std::size_t(d.end1[a] - lo);
-        double* f2m2 = fm + kSlotDoubles * std::size_t(d.end2[a] - lo);
-        for (int c = 0; c < 3; ++c) { f1m1[c] -= f2[c]; f1m1[3 + c] += m1[c]; }
-        for (int c = 0; c < 3; ++c) { f2m2[c] += f2[c]; f2m2[3 + c] += m2[c]; }
+        add_to_slot(fm + width * std::size_t(d.end1[a] - lo), -f2, m1);  // (x - f and x + (-f): the same bits)
+        add_to_slot(fm + width * std::size_t(d.end2[a] - lo), f2, m2);
     }
     scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);

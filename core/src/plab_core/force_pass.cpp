@@ -244,8 +244,8 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
 #pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)
     for (std::uint32_t c = c0; c < c1; ++c) {
         Chunk& ch = chunks_[c];
-        ch.width = dense && at_centres ? kForceDoubles : kSlotDoubles;
-        std::fill_n(partial_fm_.data() + ch.offset, ch.width * ch.slots, 0.0);
+        ch.forces_only = dense && at_centres;
+        std::fill_n(partial_fm_.data() + ch.offset, slot_width(ch.forces_only) * ch.slots, 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
             const std::size_t m = std::min(kContactBatch, ch.end - o);
             if (dense && at_centres) {  // SPH: no spin, moments, stiffness or energies
@@ -305,7 +305,8 @@ void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uin
 void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const auto& B = bodies;
-    double* fm = partial_fm_.data() + ch.offset;  // body i at kSlotDoubles * (i - lo), or listed
+    double* fm = partial_fm_.data() + ch.offset;  // body i at width * (i - lo), or listed
+    const std::size_t width = slot_width(false);
     const std::int32_t lo = ch.lo;
     const std::uint32_t* listed = ch.listed ? listed_slot_[si].data() : nullptr;
     double strain = 0, slip = 0, dashpot = 0, broken = 0, wall_power = 0;
@@ -318,22 +319,21 @@ void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, c
     }
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = rows[a];
-        double* f1m1 = fm + kSlotDoubles * (listed ? std::size_t(listed[k]) : std::size_t(s.end1[k] - lo));
+        double* f1m1 = fm + width * (listed ? std::size_t(listed[k]) : std::size_t(s.end1[k] - lo));
         strain += s.strain[k];
         slip += s.slip[k];
         dashpot += s.dashpot[k];
         broken += s.break_energy[k];
         const Vec f2(&s.force[3 * k]), point(&s.point[3 * k]);
         const Vec m1 = (point - B.position[s.end1[k]]).cross(-f2) + Vec(&s.moment1[3 * k]);
-        for (int c = 0; c < 3; ++c) { f1m1[c] -= f2[c]; f1m1[3 + c] += m1[c]; }
+        add_to_slot(f1m1, -f2, m1);  // (x - f and x + (-f) are the same bits)
         if (s.with_wall) {
             // power of the ball on the wall: -(force on the wall) . v_wall(point)
             wall_power -= f2.dot(walls.velocity_at(walls.facets[s.end2[k]].wall, point));
             continue;
         }
-        double* f2m2 = fm + kSlotDoubles * std::size_t(s.end2[k] - lo);
         const Vec m2 = (point - B.position[s.end2[k]]).cross(f2) + Vec(&s.moment2[3 * k]);
-        for (int c = 0; c < 3; ++c) { f2m2[c] += f2[c]; f2m2[3 + c] += m2[c]; }
+        add_to_slot(fm + width * std::size_t(s.end2[k] - lo), f2, m2);
     }
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = wall_power;
@@ -345,8 +345,8 @@ void World::scatter_to_chunks(std::uint32_t si) {
 #pragma omp parallel for schedule(dynamic) if (n >= parallel_min)
     for (std::uint32_t c = set_chunks_[si]; c < set_chunks_[si + 1]; ++c) {
         Chunk& ch = chunks_[c];
-        ch.width = kSlotDoubles;
-        std::fill_n(partial_fm_.data() + ch.offset, kSlotDoubles * ch.slots, 0.0);
+        ch.forces_only = false;
+        std::fill_n(partial_fm_.data() + ch.offset, slot_width(false) * ch.slots, 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch)
             scatter_rows(si, o, std::min(ch.end, o + kContactBatch), ch);
     }
@@ -433,27 +433,27 @@ void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
     }
     for (const Chunk& ch : chunks_) {
         const double* p = partial_fm_.data() + ch.offset;
+        const std::size_t width = slot_width(ch.forces_only);
+        // body i's slot, laid out as slot_width() says
+        const auto add_slot = [&](std::size_t i, const double* s) {
+            if (dim == 3) {
+                force[i] += Vec(s);
+                if (!ch.forces_only) moment[i] += Vec(s + 3);
+                return;
+            }
+            force[i].x() += s[0];
+            force[i].y() += s[1];
+            if (!ch.forces_only) moment[i].z() += s[2];
+        };
         if (ch.listed) {  // its balls in [i0, i1), ascending
             const std::int32_t* first = chunk_bodies_.data() + ch.first_listed;
             const std::int32_t* q0 = std::lower_bound(first, first + ch.slots, std::int32_t(i0));
             const std::int32_t* q1 = std::lower_bound(q0, first + ch.slots, std::int32_t(i1));
-            for (const std::int32_t* q = q0; q < q1; ++q) {
-                const double* pi = p + kSlotDoubles * std::size_t(q - first);
-                force[*q] += Vec(pi);
-                moment[*q] += Vec(pi + 3);
-            }
+            for (const std::int32_t* q = q0; q < q1; ++q) add_slot(std::size_t(*q), p + width * std::size_t(q - first));
             continue;
         }
         const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
-        if (ch.width == kForceDoubles) {  // no moments (centre-force path)
-            for (std::size_t i = c0; i < c1; ++i) force[i] += Vec(p + kForceDoubles * (i - std::size_t(ch.lo)));
-            continue;
-        }
-        for (std::size_t i = c0; i < c1; ++i) {
-            const double* pi = p + kSlotDoubles * (i - std::size_t(ch.lo));
-            force[i] += Vec(pi);
-            moment[i] += Vec(pi + 3);
-        }
+        for (std::size_t i = c0; i < c1; ++i) add_slot(i, p + width * (i - std::size_t(ch.lo)));
     }
 }
 

@@ -297,7 +297,17 @@ private:
     // order, into its own partial array over the bodies it touches (lo..hi,
     // kSlotDoubles per body: force, moment), and reduce() adds the partials
     // to each body in chunk order: the same sums for any thread count.
-    static constexpr std::size_t kSlotDoubles = 6, kForceDoubles = 3;
+    static constexpr std::size_t kSlotDoubles = 6;
+    // The doubles of a slot in use: only what can be nonzero, so that the
+    // chunks clear, scatter into and add no more than that (the block stays
+    // sized for kSlotDoubles). 3D: force, moment; 2D: fx, fy and the moment
+    // about z (finish_bodies() drops the rest). No moment on the
+    // centre-force path: 3D fx, fy, fz; 2D fx, fy.
+    std::size_t slot_width(bool forces_only) const { return dim == 2 ? (forces_only ? 2 : 3) : (forces_only ? 3 : 6); }
+    void add_to_slot(double* slot, const Vec& f, const Vec& m) const {
+        if (dim == 2) { slot[0] += f[0]; slot[1] += f[1]; slot[2] += m[2]; return; }
+        for (int c = 0; c < 3; ++c) { slot[c] += f[c]; slot[3 + c] += m[c]; }
+    }
     struct Chunk {
         std::uint32_t set;
         std::size_t begin, end;  // rows
@@ -308,10 +318,9 @@ private:
         // of them), only the balls it touches: chunk_bodies_[first_listed..]
         // ascending, row k's ball at slot listed_slot_[set][k].
         std::size_t slots = 0;
-        // doubles per slot in the last sweep: kSlotDoubles, or 3 (the force
-        // alone) on the centre-force path, which has no moments: half the
-        // partials to clear, scatter into and add (the block stays sized for 6)
-        std::size_t width = kSlotDoubles;
+        // the last sweep added forces alone (the centre-force path, which
+        // has no moments): its slots are slot_width(true) doubles wide
+        bool forces_only = false;
         bool listed = false;
         std::size_t first_listed = 0;
     };
