@@ -60,10 +60,11 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     return exceeded;
 }
 
-// Back from the packed rows of batch [begin, end): history, force and step
-// limit to the set's columns (their readers: outputs,
-// stress, the stable step, checkpoints), and each row's force added, in row
-// order, to the chunk's partial sums: -F on end 1, +F on end 2, no moment.
+// Back from the packed rows of batch [begin, end): history and force to
+// the set's columns (their readers: outputs, stress, checkpoints), the
+// batch's least step limit to World::batch_limits_ (the stable step), and
+// each row's force added, in row order, to the chunk's partial sums: -F on
+// end 1, +F on end 2, no moment.
 void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d,
                                std::size_t begin, const Chunk& ch) {
     ContactSet& s = *sets_[si];
