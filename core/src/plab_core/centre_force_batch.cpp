@@ -71,7 +71,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     const std::size_t stride = std::size_t(inst.stride);
     double* fm = partial_fm_.data() + ch.offset;  // body i at width * (i - lo): forces only (Chunk::forces_only)
     const std::size_t width = slot_width(true);
-    const bool with_z = width == 3;  // (2D: fx, fy)
+    const bool with_z = dim == 3;  // (2D slots: fx, fy)
     const std::int32_t lo = ch.lo;
     double* force = s.force.data();
     // The rows of one end 1 come in a run (a neighbour list): its sum is

@@ -434,17 +434,7 @@ void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
     for (const Chunk& ch : chunks_) {
         const double* p = partial_fm_.data() + ch.offset;
         const std::size_t width = slot_width(ch.forces_only);
-        // body i's slot, laid out as slot_width() says
-        const auto add_slot = [&](std::size_t i, const double* s) {
-            if (dim == 3) {
-                force[i] += Vec(s);
-                if (!ch.forces_only) moment[i] += Vec(s + 3);
-                return;
-            }
-            force[i].x() += s[0];
-            force[i].y() += s[1];
-            if (!ch.forces_only) moment[i].z() += s[2];
-        };
+        const auto add_slot = [&](std::size_t i, const double* s) { add_from_slot(force[i], moment[i], s, ch.forces_only); };
         if (ch.listed) {  // its balls in [i0, i1), ascending
             const std::int32_t* first = chunk_bodies_.data() + ch.first_listed;
             const std::int32_t* q0 = std::lower_bound(first, first + ch.slots, std::int32_t(i0));

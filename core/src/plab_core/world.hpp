@@ -308,6 +308,18 @@ private:
         if (dim == 2) { slot[0] += f[0]; slot[1] += f[1]; slot[2] += m[2]; return; }
         for (int c = 0; c < 3; ++c) { slot[c] += f[c]; slot[3 + c] += m[c]; }
     }
+    // A slot's sums added to a body's force f and moment m (the reader of
+    // the layout add_to_slot() and the centre-force path write).
+    void add_from_slot(Vec& f, Vec& m, const double* slot, bool forces_only) const {
+        if (dim == 3) {
+            f += Vec(slot);
+            if (!forces_only) m += Vec(slot + 3);
+            return;
+        }
+        f.x() += slot[0];
+        f.y() += slot[1];
+        if (!forces_only) m.z() += slot[2];
+    }
     struct Chunk {
         std::uint32_t set;
         std::size_t begin, end;  // rows
