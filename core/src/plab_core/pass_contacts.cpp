@@ -23,7 +23,7 @@ bool on_centre_path(const ModelInstance& inst) {
 
 void World::mark_ball_rows_in_range() {
     const bool list = !passes_.empty();
-    pc_listed_ = 0;
+    std::size_t listed = 0;  // rows of the pass-contact columns listed so far
     in_range_.resize(sets_.size());
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         ContactSet& s = *sets_[si];
@@ -32,31 +32,25 @@ void World::mark_ball_rows_in_range() {
             if (list) {
                 std::size_t m = 0;
                 for (std::size_t k = 0; k < s.size(); ++k) m += s.active[k] != 0;
-                grow_pass_contacts(pc_listed_ + m);
+                if (pc_end1_.size() < listed + m) resize_pass_contacts(listed + m);  // (only the new tail is cleared)
                 for (std::size_t k = 0; k < s.size(); ++k)
                     if (s.active[k]) {
-                        pc_end1_[pc_listed_] = s.end1[k];
-                        pc_end2_[pc_listed_] = s.end2[k];
-                        pc_wall_[pc_listed_] = 1;
-                        pc_distance_[pc_listed_] = s.distance[k];
-                        ++pc_listed_;
+                        pc_end1_[listed] = s.end1[k];
+                        pc_end2_[listed] = s.end2[k];
+                        pc_wall_[listed] = 1;
+                        pc_distance_[listed] = s.distance[k];
+                        ++listed;
                     }
             }
             continue;
         }
-        mark_set_in_range(si, list);
+        mark_set_in_range(si, list ? &listed : nullptr);
     }
-    if (list) {  // down to the rows listed (a shrink: nothing cleared)
-        pc_end1_.resize(pc_listed_);
-        pc_end2_.resize(pc_listed_);
-        pc_wall_.resize(pc_listed_);
-        pc_distance_.resize(pc_listed_);
-    }
+    if (list) resize_pass_contacts(listed);  // down to the rows listed (a shrink: nothing cleared)
     in_range_marked_ = true;
 }
 
-void World::grow_pass_contacts(std::size_t n) {
-    if (pc_end1_.size() >= n) return;  // (only the new tail is cleared)
+void World::resize_pass_contacts(std::size_t n) {
     pc_end1_.resize(n);
     pc_end2_.resize(n);
     pc_wall_.resize(n);
@@ -68,8 +62,10 @@ void World::grow_pass_contacts(std::size_t n) {
 // that left the range): the rows in range of batch b listed from
 // b * kContactBatch on, then the
 // passes' contacts appended in batch order, so the list is the same for
-// any thread count.
-void World::mark_set_in_range(std::uint32_t si, bool list) {
+// any thread count. `listed`: the pass-contact rows so far (null: no
+// passes, no list).
+void World::mark_set_in_range(std::uint32_t si, std::size_t* listed) {
+    const bool list = listed != nullptr;
     const ModelInstance& inst = *set_owner_[si];
     RowsInRange& r = in_range_[si];
     const bool centre = on_centre_path(inst);
@@ -85,20 +81,20 @@ void World::mark_set_in_range(std::uint32_t si, bool list) {
                                                    distances ? r.distance.data() + k0 : nullptr));
     }
     r.listed = centre;
-    if (list) append_pass_contacts(si);
+    if (list) append_pass_contacts(si, *listed);
 }
 
 // The passes' contacts of ball–ball set si from its rows in range, each
 // batch's at its place in the list (threads take whole batches).
-void World::append_pass_contacts(std::uint32_t si) {
+void World::append_pass_contacts(std::uint32_t si, std::size_t& listed) {
     const ContactSet& s = *sets_[si];
     const RowsInRange& r = in_range_[si];
-    const std::size_t n_batches = r.count.size(), base = pc_listed_;
+    const std::size_t n_batches = r.count.size(), base = listed;
     batch_at_.resize(n_batches);  // where each batch's rows start in the list
     std::size_t total = 0;
     for (std::size_t b = 0; b < n_batches; ++b) { batch_at_[b] = base + total; total += r.count[b]; }
-    grow_pass_contacts(base + total);
-    pc_listed_ = base + total;
+    if (pc_end1_.size() < base + total) resize_pass_contacts(base + total);
+    listed = base + total;
 #pragma omp parallel for schedule(static) if (s.size() >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::uint32_t* row = r.row.data() + b * kContactBatch;

@@ -490,13 +490,13 @@ private:
     void rates_stage();
     bool rates_stage_needed(const ModelInstance& inst) const;
     void mark_ball_rows_in_range();  // pass_contacts.cpp
-    void mark_set_in_range(std::uint32_t set_index, bool list);
-    void append_pass_contacts(std::uint32_t set_index);
-    // The pass-contact columns hold at least n rows. They are refilled every
-    // cycle without being emptied first: resizing an emptied vector would
-    // clear the whole list (~2 MB on the dam break) only to overwrite it.
-    void grow_pass_contacts(std::size_t n);
-    std::size_t pc_listed_ = 0;  // rows of the pass-contact columns listed so far this cycle
+    void mark_set_in_range(std::uint32_t set_index, std::size_t* listed);
+    void append_pass_contacts(std::uint32_t set_index, std::size_t& listed);
+    // The pass-contact columns at n rows. mark_ball_rows_in_range() refills
+    // them every cycle without emptying them first (resizing an emptied
+    // vector would clear the whole list, ~2 MB on the dam break, only to
+    // overwrite it): it grows them as it lists and shrinks them at the end.
+    void resize_pass_contacts(std::size_t n);
     void accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i);
     void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);
