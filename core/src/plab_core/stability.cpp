@@ -166,9 +166,10 @@ void World::check_overlaps() {
 
 void World::overlap_stop(const ModelInstance& inst, const ContactSet& s) {
     for (std::size_t k = 0; k < s.size(); ++k) {
+        if (!s.active[k]) continue;  // (before the gap: a packed set's takes a square root)
         const double r = s.with_wall ? end_radius(s, k, false) : std::min(end_radius(s, k, false), end_radius(s, k, true));
         const double gap = contact_gap(s, k);
-        if (!s.active[k] || -gap <= inst.max_overlap * r) continue;
+        if (-gap <= inst.max_overlap * r) continue;
         Diagnostic d;
         d.quantity = "overlap";
         d.subject = contact_name(inst, s, k);
