@@ -216,6 +216,23 @@ void World::model_failed(const ModelInstance& inst) const {
                    std::to_string(step_count));
 }
 
+// Which model instances pair only balls that cannot move (every DOF
+// fixed): fixity may change between rebuilds (a `set` command, a case's
+// clamp), so this is found at every pass, a byte per ball.
+void World::find_still_instances() {
+    const std::size_t ng = groups_.size();
+    still_group_.assign(ng, 1);
+    const std::uint8_t* fixity = bodies.fixity.data();
+    const int* group = bodies.group.data();
+    for (std::size_t i = 0; i < bodies.size(); ++i) still_group_[group[i]] &= fixity[i] == dof_all;
+    still_instance_.assign(instances_.size(), 1);
+    for (std::size_t a = 0; a < ng; ++a)
+        for (std::size_t b = 0; b < ng; ++b) {
+            const int inst = cmat_[a * ng + b];
+            if (inst >= 0 && !(still_group_[a] && still_group_[b])) still_instance_[inst] = 0;
+        }
+}
+
 // The force pass of one set in a single sweep over its chunks (world.hpp),
 // batch by batch: geometry (ball–ball sets; a wall set has it done before,
 // because resolve_wall_features needs a ball's rows together), the model,
@@ -239,6 +256,15 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     const std::uint32_t c0 = set_chunks_[si], c1 = set_chunks_[si + 1];
     if (dense && at_centres && inst.uses(PLAB_IO_DT_LIMIT))
         batch_limits_[si].assign((n + kContactBatch - 1) / kContactBatch, BatchLimit{kInf, 0});
+    // Centre forces between balls that cannot move (the boundary particles
+    // of SPH) move nothing: the model is not asked for them, as Yade makes
+    // no interaction between two bodies that are not dynamic. The rows stay
+    // in range for the passes (mark_ball_rows_in_range() tested them), with
+    // zero force, no step limit and nothing added to their balls.
+    const bool still = dense && at_centres && in_range_marked_ && si < in_range_.size() && in_range_[si].listed &&
+                       si / 2 < still_instance_.size() && still_instance_[si / 2];
+    if (still && !s.forces_zero) std::fill(s.force.begin(), s.force.end(), 0.0);
+    s.forces_zero = still;
     int failed = 0;
     bool exceeded = false;
 #pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)
@@ -246,6 +272,7 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
         Chunk& ch = chunks_[c];
         ch.forces_only = dense && at_centres;
         std::fill_n(partial_fm_.data() + ch.offset, slot_width(ch.forces_only) * ch.slots, 0.0);
+        if (still) continue;
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
             const std::size_t m = std::min(kContactBatch, ch.end - o);
             if (dense && at_centres) {  // SPH: no spin, moments, stiffness or energies

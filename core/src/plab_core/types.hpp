@@ -22,6 +22,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::size_t kParallelMin = 1024;
 
 // Degrees of freedom that can be fixed, as bits.
-enum Dof : std::uint8_t { dof_x = 1, dof_y = 2, dof_z = 4, dof_rx = 8, dof_ry = 16, dof_rz = 32 };
+enum Dof : std::uint8_t { dof_x = 1, dof_y = 2, dof_z = 4, dof_rx = 8, dof_ry = 16, dof_rz = 32, dof_all = 63 };
 
 } // namespace plab

@@ -397,6 +397,7 @@ void World::force_pass(double closing_kick) {
             // the passes that turn rates into states (e.g. summation density,
             // the EOS) still run before the forces, on this cycle's contacts
             mark_ball_rows_in_range();  // (it lists the passes' contacts too)
+            find_still_instances();
             run_passes(PLAB_PHASE_RATES_DONE);
             for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
             in_range_marked_ = false;
