@@ -26,6 +26,7 @@ bool ContactSet::keeps(std::uint32_t io_bit) const {
 }
 
 void ContactSet::resize_columns(std::size_t n, int n_acc) {
+    forces_zero = false;  // (dt_limit below holds zeros, not kInf)
     fill(active, n, std::uint8_t(0));
     fill(interior, with_wall ? n : 0, std::uint8_t(1));
     fill(force, 3 * n, 0.0);

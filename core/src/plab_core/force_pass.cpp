@@ -201,6 +201,7 @@ void World::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
     std::vector<const double*> read_cols;
     for (int f : inst.fields_read) read_cols.push_back(fields_[f].data());
     const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
+    s.forces_zero = false;  // (any stage may write the outputs)
     int failed = 0;
 #pragma omp parallel for schedule(dynamic) reduction(| : failed) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
@@ -218,19 +219,42 @@ void World::model_failed(const ModelInstance& inst) const {
 
 // Which model instances pair only balls that cannot move (every DOF
 // fixed): fixity may change between rebuilds (a `set` command, a case's
-// clamp), so this is found at every pass, a byte per ball.
+// clamp), so this is found at every pass, a byte per ball, when a model
+// has centre forces.
 void World::find_still_instances() {
+    still_instance_.assign(instances_.size(), 0);
+    bool at_centres = false;
+    for (const auto& inst : instances_) at_centres |= (inst->desc->flags & PLAB_MODEL_FORCE_AT_CENTRES) != 0;
+    if (!at_centres) return;
     const std::size_t ng = groups_.size();
     still_group_.assign(ng, 1);
     const std::uint8_t* fixity = bodies.fixity.data();
     const int* group = bodies.group.data();
     for (std::size_t i = 0; i < bodies.size(); ++i) still_group_[group[i]] &= fixity[i] == dof_all;
-    still_instance_.assign(instances_.size(), 1);
+    std::fill(still_instance_.begin(), still_instance_.end(), 1);
     for (std::size_t a = 0; a < ng; ++a)
         for (std::size_t b = 0; b < ng; ++b) {
             const int inst = cmat_[a * ng + b];
             if (inst >= 0 && !(still_group_[a] && still_group_[b])) still_instance_[inst] = 0;
         }
+}
+
+// Centre forces between balls that cannot move (the boundary particles of
+// SPH) move nothing: the model is not asked for them, as Yade makes no
+// interaction between two bodies that are not dynamic. The rows stay in
+// the list and in range for the passes (density summation), with zero
+// force and no step limit, and add nothing to their balls.
+bool World::still_centre_set(std::uint32_t si) const {
+    const std::uint32_t m = si / 2;
+    return !sets_[si]->with_wall && m < still_instance_.size() && still_instance_[m] &&
+           (instances_[m]->desc->flags & PLAB_MODEL_FORCE_AT_CENTRES);
+}
+
+void World::hold_still(ContactSet& s) {
+    if (s.forces_zero) return;
+    std::fill(s.force.begin(), s.force.end(), 0.0);
+    std::fill(s.dt_limit.begin(), s.dt_limit.end(), kInf);  // (empty when the set keeps none)
+    s.forces_zero = true;
 }
 
 // The force pass of one set in a single sweep over its chunks (world.hpp),
@@ -256,15 +280,12 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     const std::uint32_t c0 = set_chunks_[si], c1 = set_chunks_[si + 1];
     if (dense && at_centres && inst.uses(PLAB_IO_DT_LIMIT))
         batch_limits_[si].assign((n + kContactBatch - 1) / kContactBatch, BatchLimit{kInf, 0});
-    // Centre forces between balls that cannot move (the boundary particles
-    // of SPH) move nothing: the model is not asked for them, as Yade makes
-    // no interaction between two bodies that are not dynamic. The rows stay
-    // in range for the passes (mark_ball_rows_in_range() tested them), with
-    // zero force, no step limit and nothing added to their balls.
+    // a still set (still_centre_set) whose rows mark_ball_rows_in_range()
+    // tested: nothing to pack, only its chunks' partial sums to clear
     const bool still = dense && at_centres && in_range_marked_ && si < in_range_.size() && in_range_[si].listed &&
-                       si / 2 < still_instance_.size() && still_instance_[si / 2];
-    if (still && !s.forces_zero) std::fill(s.force.begin(), s.force.end(), 0.0);
-    s.forces_zero = still;
+                       still_centre_set(si);
+    if (still) hold_still(s);
+    else s.forces_zero = false;
     int failed = 0;
     bool exceeded = false;
 #pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)

@@ -380,6 +380,7 @@ void World::force_pass(double closing_kick) {
         // (geometry, model, scatter to slots); a rates stage needs all the
         // geometry before any force. A rates stage whose sums nothing reads
         // is skipped (rates_stage_needed).
+        find_still_instances();
         bool rates_models = false;
         swept_ = true;
         for (auto& inst : instances_) {
@@ -397,7 +398,6 @@ void World::force_pass(double closing_kick) {
             // the passes that turn rates into states (e.g. summation density,
             // the EOS) still run before the forces, on this cycle's contacts
             mark_ball_rows_in_range();  // (it lists the passes' contacts too)
-            find_still_instances();
             run_passes(PLAB_PHASE_RATES_DONE);
             for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
             in_range_marked_ = false;
@@ -407,9 +407,11 @@ void World::force_pass(double closing_kick) {
         } else {
             build_pass_contacts();
             rates_stage();
-            for (auto& inst : instances_) {
-                compute(*inst, inst->balls, PLAB_STAGE_FORCES);
-                compute(*inst, inst->walls, PLAB_STAGE_FORCES);
+            for (std::uint32_t m = 0; m < instances_.size(); ++m) {
+                ModelInstance& inst = *instances_[m];
+                if (still_centre_set(2 * m)) hold_still(inst.balls);  // (as force_sweep)
+                else compute(inst, inst.balls, PLAB_STAGE_FORCES);
+                compute(inst, inst.walls, PLAB_STAGE_FORCES);
             }
         }
     }

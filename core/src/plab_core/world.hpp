@@ -53,7 +53,7 @@ struct ContactSet {
     // energy and wall power of the active rows (World::scatter_rows)
     std::vector<double> batch_energy;
     bool overlap_exceeded = false;  // an active contact overlaps beyond its model's max_overlap (geometry())
-    bool forces_zero = false;       // the force column holds zeros (World::force_sweep of a still set)
+    bool forces_zero = false;       // force zero and no step limit in every row (World::hold_still)
 
     std::size_t size() const { return end1.size(); }
     void resize_columns(std::size_t n, int n_accumulated);
@@ -381,9 +381,11 @@ private:
     void force_sweep(std::uint32_t set_index, bool with_geometry);
     // Per model instance: every ball of the groups it pairs has every DOF
     // fixed (SPH boundary particles), found at each force pass; then no
-    // force of its ball–ball rows moves anything (force_sweep).
+    // centre force of its ball–ball rows moves anything (force_sweep).
     std::vector<std::uint8_t> still_instance_, still_group_;
     void find_still_instances();
+    bool still_centre_set(std::uint32_t set_index) const;
+    static void hold_still(ContactSet& set);
     // per-body stiffness sums of the last force pass, summed on demand
     mutable std::vector<double> k_trans_, k_rot_;
     mutable bool stiffness_valid_ = false;
