@@ -102,18 +102,37 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
     return n_active;
 }
 
-// The range test (range_test_rows), then the geometry of the rows in range
-// packed into d. True when an active contact overlaps beyond its model's
-// max_overlap.
-bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
-                           DenseBatch& d) {
-    const std::size_t n_active = range_test_rows(inst, si, begin, end, d.row, d.distance);
-    const ContactSet& s = *sets_[si];
-    const std::size_t stride = std::size_t(inst.stride);
-    const auto& B = bodies;
-    // only the optional inputs the model reads (abi.h, PLAB_IO_*)
-    d.poison_unread(inst);
-    const OptionalInputs optional(inst);
+namespace {
+// ball_pair_kinematics() in the plane: a 2D world's positions and
+// velocities have z = 0 and its spins only a z component (its implicit
+// fixity), so only the other components are worked out, with the same
+// arithmetic (w x a in x is 0*0 - w_z a_y, in y w_z a_x - 0*0).
+inline PairKinematics ball_pair_kinematics_2d(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
+                                              double gap) {
+    const double xi = B.position[i].x(), yi = B.position[i].y(), xj = B.position[j].x(), yj = B.position[j].y();
+    const double inv = 1.0 / dist;
+    const bool apart = dist > 0;  // (else the normal is x, as centre_normal())
+    const double nx = apart ? (xj - xi) * inv : 1.0, ny = apart ? (yj - yi) * inv : 0.0;
+    const double reach = ri + 0.5 * gap;
+    const double px = xi + nx * reach, py = yi + ny * reach;
+    const double a1x = px - xi, a1y = py - yi, a2x = px - xj, a2y = py - yj;
+    const double wi = B.angular_velocity[i].z(), wj = B.angular_velocity[j].z();
+    const double vjx = B.velocity[j].x() + (0.0 - wj * a2y), vjy = B.velocity[j].y() + wj * a2x;
+    const double vix = B.velocity[i].x() + (0.0 - wi * a1y), viy = B.velocity[i].y() + wi * a1x;
+    PairKinematics p;
+    p.normal = Vec(nx, ny, 0.0);
+    p.point = Vec(px, py, 0.0);
+    p.arm1 = Vec(a1x, a1y, 0.0);
+    p.arm2 = Vec(a2x, a2y, 0.0);
+    p.rel_velocity = Vec(vjx - vix, vjy - viy, 0.0);
+    p.rel_angular_velocity = Vec(0.0, 0.0, wj - wi);
+    return p;
+}
+
+// pack_ball_rows()'s loop over the rows in range, for 2D or 3D.
+template <int Dim>
+bool pack_rows_in_range(const Bodies& B, const ContactSet& s, const OptionalInputs& optional, double max_overlap,
+                        std::size_t n_active, DenseBatch& d) {
     bool exceeded = false;
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = d.row[a];
@@ -121,7 +140,8 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         const double ri = B.radius[i], rj = B.radius[j], dist = d.distance[a];
         const double gap = surface_gap(dist, ri, rj);
         d.gap[a] = gap;
-        const PairKinematics p = ball_pair_kinematics(B, i, j, ri, dist, gap);
+        const PairKinematics p =
+            Dim == 2 ? ball_pair_kinematics_2d(B, i, j, ri, dist, gap) : ball_pair_kinematics(B, i, j, ri, dist, gap);
         d.end1[a] = i;
         d.end2[a] = j;
         put(d.normal, a, p.normal);
@@ -131,8 +151,25 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
         put(d.rel_velocity, a, p.rel_velocity);
         // masses from the bodies (in cache) rather than the set's columns
         optional.put_row(d, a, p.rel_angular_velocity, ri, rj, B.mass[i], B.mass[j]);
-        exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
+        exceeded |= -gap > max_overlap * std::min(ri, rj);
     }
+    return exceeded;
+}
+} // namespace
+
+// The range test (range_test_rows), then the geometry of the rows in range
+// packed into d. True when an active contact overlaps beyond its model's
+// max_overlap.
+bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+                           DenseBatch& d) {
+    const std::size_t n_active = range_test_rows(inst, si, begin, end, d.row, d.distance);
+    const ContactSet& s = *sets_[si];
+    const std::size_t stride = std::size_t(inst.stride);
+    // only the optional inputs the model reads (abi.h, PLAB_IO_*)
+    d.poison_unread(inst);
+    const OptionalInputs optional(inst);
+    const bool exceeded = dim == 2 ? pack_rows_in_range<2>(bodies, s, optional, inst.max_overlap, n_active, d)
+                                   : pack_rows_in_range<3>(bodies, s, optional, inst.max_overlap, n_active, d);
     gather_history(d.history.data(), s.history.data(), d.row, n_active, stride);
     d.count = std::uint32_t(n_active);
     // the outputs a model adds to start from zero (dt limit: no limit); the
@@ -189,6 +226,48 @@ int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double d
     return inst.desc->compute(inst.state, inst.props.data(), &batch);
 }
 
+namespace {
+struct UnpackedSums { double strain = 0, slip = 0, dashpot = 0, broken = 0; };
+// unpack_rows()'s loop over the packed rows, for 2D or 3D: a 2D slot takes
+// fx, fy and the z moment alone (World::add_to_slot), so only that
+// component of r x F is worked out.
+template <int Dim>
+UnpackedSums unpack_loop(ContactSet& s, const DenseBatch& d, double* fm, std::size_t width, std::int32_t lo,
+                         bool pure_moments, bool breaks) {
+    UnpackedSums e;
+    for (std::size_t a = 0; a < d.count; ++a) {
+        const std::size_t k = d.row[a];
+        copy3(s.force.data(), k, d.force, a);
+        if (!s.packed) {  // a packed set recomputes them on demand (contact_point())
+            copy3(s.point.data(), k, d.point, a);
+            copy3(s.normal.data(), k, d.normal, a);
+        }
+        e.strain += d.strain[a];
+        e.slip += d.slip[a];
+        e.dashpot += d.dashpot[a];
+        if (breaks) e.broken += d.break_energy[a];
+        const Vec f2(&d.force[3 * a]);
+        double* s1 = fm + width * std::size_t(d.end1[a] - lo);
+        double* s2 = fm + width * std::size_t(d.end2[a] - lo);
+        if (Dim == 2) {  // Eigen's cross product in z: a.x b.y - a.y b.x
+            const double *r1 = &d.arm1[3 * a], *r2 = &d.arm2[3 * a];
+            double m1 = r1[0] * -f2[1] - r1[1] * -f2[0];
+            double m2 = r2[0] * f2[1] - r2[1] * f2[0];
+            if (pure_moments) { m1 += d.moment1[3 * a + 2]; m2 += d.moment2[3 * a + 2]; }
+            s1[0] += -f2[0]; s1[1] += -f2[1]; s1[2] += m1;  // (x - f and x + (-f): the same bits)
+            s2[0] += f2[0]; s2[1] += f2[1]; s2[2] += m2;
+            continue;
+        }
+        Vec m1 = Vec(&d.arm1[3 * a]).cross(-f2);
+        Vec m2 = Vec(&d.arm2[3 * a]).cross(f2);
+        if (pure_moments) { m1 += Vec(&d.moment1[3 * a]); m2 += Vec(&d.moment2[3 * a]); }
+        for (int c = 0; c < 3; ++c) { s1[c] += -f2[c]; s1[3 + c] += m1[c]; }
+        for (int c = 0; c < 3; ++c) { s2[c] += f2[c]; s2[3 + c] += m2[c]; }
+    }
+    return e;
+}
+} // namespace
+
 // Back from the packed rows of batch [begin, end): history, and what the
 // readers of the contact columns use (force, moments, stiffnesses, step
 // limit: outputs, stress, stable step, bond breaks, checkpoints; normal and
@@ -202,25 +281,9 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     const std::size_t width = slot_width(false);
     const std::int32_t lo = ch.lo;
     const bool pure_moments = inst.uses(PLAB_IO_MOMENTS), breaks = inst.uses(PLAB_IO_BREAK_ENERGY);
-    double strain = 0, slip = 0, dashpot = 0, broken = 0;
-    for (std::size_t a = 0; a < d.count; ++a) {
-        const std::size_t k = d.row[a];
-        copy3(s.force.data(), k, d.force, a);
-        if (!s.packed) {  // a packed set recomputes them on demand (contact_point())
-            copy3(s.point.data(), k, d.point, a);
-            copy3(s.normal.data(), k, d.normal, a);
-        }
-        strain += d.strain[a];
-        slip += d.slip[a];
-        dashpot += d.dashpot[a];
-        if (breaks) broken += d.break_energy[a];
-        const Vec f2(&d.force[3 * a]);
-        Vec m1 = Vec(&d.arm1[3 * a]).cross(-f2);
-        Vec m2 = Vec(&d.arm2[3 * a]).cross(f2);
-        if (pure_moments) { m1 += Vec(&d.moment1[3 * a]); m2 += Vec(&d.moment2[3 * a]); }
-        add_to_slot(fm + width * std::size_t(d.end1[a] - lo), -f2, m1);  // (x - f and x + (-f): the same bits)
-        add_to_slot(fm + width * std::size_t(d.end2[a] - lo), f2, m2);
-    }
+    const UnpackedSums sums = dim == 2 ? unpack_loop<2>(s, d, fm, width, lo, pure_moments, breaks)
+                                       : unpack_loop<3>(s, d, fm, width, lo, pure_moments, breaks);
+    const double strain = sums.strain, slip = sums.slip, dashpot = sums.dashpot, broken = sums.broken;
     scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = 0;
