@@ -26,10 +26,12 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     const RowsInRange* marked = in_range_marked_ && si < in_range_.size() && in_range_[si].listed ? &in_range_[si] : nullptr;
     if (marked && begin % kContactBatch == 0) {  // mark_ball_rows_in_range() listed this batch's rows in range
         n_active = marked->count[begin / kContactBatch];
-        std::copy_n(marked->row.data() + begin, n_active, d.row);
-        std::copy_n(marked->distance.data() + begin, n_active, d.distance);
+        d.rows = marked->row.data() + begin;
+        d.distances = marked->distance.data() + begin;
     } else {
         n_active = range_test_rows(inst, si, begin, end, d.row, d.distance);  // (gap: below)
+        d.rows = d.row;
+        d.distances = d.distance;
     }
     // only the optional inputs the model reads (abi.h, PLAB_IO_*): `sph`
     // reads the masses, not the effective mass and radius (two divisions)
@@ -37,12 +39,12 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     const OptionalInputs optional(inst);
     bool exceeded = false;
     for (std::size_t a = 0; a < n_active; ++a) {
-        const std::size_t k = d.row[a];
+        const std::size_t k = d.rows[a];
         const std::int32_t i = s.end1[k], j = s.end2[k];
         // radii and masses from the bodies (in cache) rather than the set's
         // long columns, with fill_pair_constants()'s arithmetic
         const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
-        const double dist = d.distance[a], gap = surface_gap(dist, ri, rj);
+        const double dist = d.distances[a], gap = surface_gap(dist, ri, rj);
         d.gap[a] = gap;
         const Vec normal = centre_normal(B.position[i], B.position[j], dist);
         d.end1[a] = i;
@@ -52,7 +54,7 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
         optional.put_row(d, a, Vec::Zero(), ri, rj, mi, mj);
         exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
     }
-    gather_history(d.history.data(), s.history.data(), d.row, n_active, stride);
+    gather_history(d.history.data(), s.history.data(), d.rows, n_active, stride);
     d.count = std::uint32_t(n_active);
     // only the outputs the host reads start from zero (dt limit: no limit)
     std::fill_n(d.force, 3 * n_active, 0.0);
@@ -87,7 +89,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
         if (with_z) held[2] = sz;
     };
     for (std::size_t a = 0; a < d.count; ++a) {
-        const std::size_t k = d.row[a];
+        const std::size_t k = d.rows[a];
         copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
         const double fx = d.force[3 * a], fy = d.force[3 * a + 1], fz = d.force[3 * a + 2];
         if (d.end1[a] != held_body) {
@@ -112,9 +114,9 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     if (inst.uses(PLAB_IO_DT_LIMIT)) {  // the batch's least step limit, its first row (World::batch_limits_)
         BatchLimit& least = batch_limits_[si][begin / kContactBatch];
         for (std::size_t a = 0; a < d.count; ++a)
-            if (d.dt_limit[a] < least.dt) least = {d.dt_limit[a], d.row[a]};
+            if (d.dt_limit[a] < least.dt) least = {d.dt_limit[a], d.rows[a]};
     }
-    scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
+    scatter_history(s.history.data(), d.history.data(), d.rows, d.count, stride);
     // (the batch's energy sums stay zero: force_sweep cleared them)
 }
 

@@ -163,6 +163,8 @@ bool pack_rows_in_range(const Bodies& B, const ContactSet& s, const OptionalInpu
 bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                            DenseBatch& d) {
     const std::size_t n_active = range_test_rows(inst, si, begin, end, d.row, d.distance);
+    d.rows = d.row;
+    d.distances = d.distance;
     const ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);
     // only the optional inputs the model reads (abi.h, PLAB_IO_*)
@@ -215,6 +217,7 @@ int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double d
     batch.history_stride = uint32_t(inst.stride);
     batch.dt = dt;
     bind_rows(batch, d, 0, d.history.data());
+    batch.distance = d.distances;  // (where the packer left them)
     batch.body_fields = read_cols;
     // models that accumulate fields take the full-column path, except in
     // the force stage of a rates-stage model, whose sums are not kept

@@ -30,6 +30,12 @@ struct DenseBatch {
     // outputs, zeroed for the packed rows only
     double force[3 * N], moment1[3 * N], moment2[3 * N];
     double strain[N], slip[N], dashpot[N], k_t[N], k_r[N], dt_limit[N], break_energy[N];
+    // Where the packed rows' persistent rows and centre distances are read:
+    // row and distance, or, on the centre-force path, the lists that
+    // mark_ball_rows_in_range() made, read in place rather than copied
+    // (pack_centre_rows; the copy was 3 % of an SPH step).
+    const std::uint32_t* rows = row;
+    const double* distances = distance;
 
     // where the force stage of a rates-stage model accumulates: not kept
     // (abi.h, rates_stage), but the model may write there
