@@ -13,6 +13,46 @@
 
 namespace plab {
 
+namespace {
+// pack_centre_rows()'s loop over the rows in range, for 2D or 3D (a 2D
+// world's positions and velocities have z = 0: the normal and the relative
+// velocity in the plane, with centre_normal()'s arithmetic).
+template <int Dim>
+bool pack_centre_loop(const Bodies& B, const ContactSet& s, const OptionalInputs& optional, double max_overlap,
+                      std::size_t n_active, DenseBatch& d) {
+    bool exceeded = false;
+    for (std::size_t a = 0; a < n_active; ++a) {
+        const std::size_t k = d.rows[a];
+        const std::int32_t i = s.end1[k], j = s.end2[k];
+        // radii and masses from the bodies (in cache) rather than the set's
+        // long columns, with fill_pair_constants()'s arithmetic
+        const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
+        const double dist = d.distances[a], gap = surface_gap(dist, ri, rj);
+        d.gap[a] = gap;
+        d.end1[a] = i;
+        d.end2[a] = j;
+        // (no contact point: readers recompute it, World::contact_point)
+        if (Dim == 2) {
+            const Vec &xi = B.position[i], &xj = B.position[j];
+            const double inv = 1.0 / dist;
+            const bool apart = dist > 0;  // (else the normal is x)
+            d.normal[3 * a] = apart ? (xj.x() - xi.x()) * inv : 1.0;
+            d.normal[3 * a + 1] = apart ? (xj.y() - xi.y()) * inv : 0.0;
+            d.normal[3 * a + 2] = 0.0;
+            d.rel_velocity[3 * a] = B.velocity[j].x() - B.velocity[i].x();
+            d.rel_velocity[3 * a + 1] = B.velocity[j].y() - B.velocity[i].y();
+            d.rel_velocity[3 * a + 2] = 0.0;
+        } else {
+            put(d.normal, a, centre_normal(B.position[i], B.position[j], dist));
+            put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
+        }
+        optional.put_row(d, a, Vec::Zero(), ri, rj, mi, mj);
+        exceeded |= -gap > max_overlap * std::min(ri, rj);
+    }
+    return exceeded;
+}
+} // namespace
+
 // Rows [begin, end) of ball–ball set si: the rows in range that
 // mark_ball_rows_in_range() listed this cycle (or range_test_rows()), packed
 // into d with the centres' relative velocity. True when an active contact
@@ -37,23 +77,8 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     // reads the masses, not the effective mass and radius (two divisions)
     d.poison_unread(inst);
     const OptionalInputs optional(inst);
-    bool exceeded = false;
-    for (std::size_t a = 0; a < n_active; ++a) {
-        const std::size_t k = d.rows[a];
-        const std::int32_t i = s.end1[k], j = s.end2[k];
-        // radii and masses from the bodies (in cache) rather than the set's
-        // long columns, with fill_pair_constants()'s arithmetic
-        const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
-        const double dist = d.distances[a], gap = surface_gap(dist, ri, rj);
-        d.gap[a] = gap;
-        const Vec normal = centre_normal(B.position[i], B.position[j], dist);
-        d.end1[a] = i;
-        d.end2[a] = j;
-        put(d.normal, a, normal);  // (no contact point: readers recompute it, World::contact_point)
-        put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
-        optional.put_row(d, a, Vec::Zero(), ri, rj, mi, mj);
-        exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
-    }
+    const bool exceeded = dim == 2 ? pack_centre_loop<2>(B, s, optional, inst.max_overlap, n_active, d)
+                                   : pack_centre_loop<3>(B, s, optional, inst.max_overlap, n_active, d);
     gather_history(d.history.data(), s.history.data(), d.rows, n_active, stride);
     d.count = std::uint32_t(n_active);
     // only the outputs the host reads start from zero (dt limit: no limit)
