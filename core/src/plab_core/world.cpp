@@ -459,10 +459,13 @@ inline void add_body_energy(const KickColumns& B, std::size_t i, const Vec& v, c
 // Half a kick (thesis eq. 33: v += h F/m, w += h M/I) of bodies [i0, i1)
 // with every DOF of their dimension free (2D: x, y and the spin about z),
 // without a branch per component; with Energies, their energy sums too.
-template <int Dim, bool Energies>
+// SpinFixed: every body's rotations are fixed and its translations free
+// (SPH particles), so only v is kicked; the energy sums are kick_block()'s.
+template <int Dim, bool Energies, bool SpinFixed = false>
 void kick_free_block(Bodies& bodies, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
                      double& kinetic, double& boundary) {
     const KickColumns B(bodies);
+    const std::uint8_t spin_fixed = Dim == 3 ? (dof_rx | dof_ry | dof_rz) : dof_rz;  // (explicitly: 2D's rx, ry are implicit)
     for (std::size_t i = i0; i < i1; ++i) {
         // on copies, stored whole: the energy sums read them back from
         // registers, not through a store of parts and a wider load
@@ -472,16 +475,16 @@ void kick_free_block(Bodies& bodies, const double* inv_m, const double* inv_i, d
         if (Dim == 3) {
             for (int c = 0; c < 3; ++c) {
                 v[c] += h * f[c] * inv_m[i];
-                w[c] += h * m[c] * inv_i[i];
+                if (!SpinFixed) w[c] += h * m[c] * inv_i[i];
             }
         } else {
             v[0] += h * f[0] * inv_m[i];
             v[1] += h * f[1] * inv_m[i];
-            w[2] += h * m[2] * inv_i[i];
+            if (!SpinFixed) w[2] += h * m[2] * inv_i[i];
         }
         B.velocity[i] = v;
-        B.angular_velocity[i] = w;
-        if (Energies) add_body_energy(B, i, v, w, 2 * h, 0, kinetic, boundary);
+        if (!SpinFixed) B.angular_velocity[i] = w;
+        if (Energies) add_body_energy(B, i, v, w, 2 * h, SpinFixed ? spin_fixed : 0, kinetic, boundary);
     }
 }
 
@@ -520,11 +523,23 @@ void World::kick_block_of_bodies(std::size_t b, double h, bool closing) {
     const std::size_t i0 = b * kBodyBlock, i1 = std::min(bodies.size(), i0 + kBodyBlock);
     const double* inv_m = inv_mass_.data();
     const double* inv_i = inv_inertia_.data();
-    std::uint8_t fixed = 0;  // any explicitly fixed DOF in the block
-    for (std::size_t i = i0; i < i1; ++i) fixed |= bodies.fixity[i];
+    std::uint8_t fixed = 0, every = 0xff;  // explicitly fixed DOFs: of any body in the block, of every one
+    for (std::size_t i = i0; i < i1; ++i) {
+        fixed |= bodies.fixity[i];
+        every &= bodies.fixity[i];
+    }
     fixed &= ~bodies.implicit_fixity();
+    every &= ~bodies.implicit_fixity();
+    const std::uint8_t spin = dim == 3 ? (dof_rx | dof_ry | dof_rz) : dof_rz;
     double kinetic = 0, boundary = 0;
-    if (fixed)
+    if (fixed == spin && every == spin) {  // rotations fixed, translations free, in every body
+        if (dim == 3)
+            closing ? kick_free_block<3, true, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
+                    : kick_free_block<3, false, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
+        else
+            closing ? kick_free_block<2, true, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
+                    : kick_free_block<2, false, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
+    } else if (fixed)
         kick_block(bodies, inv_m, inv_i, h, i0, i1, closing, kinetic, boundary);
     else if (dim == 3)
         closing ? kick_free_block<3, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
