@@ -379,8 +379,10 @@ TEST_CASE("contract: a batch of active rows only gives what the same rows give a
                     }
                     for (std::size_t k = 0; k < rows.size(); ++k) {  // the next step: stored history, turned plane
                         rows[k].history = dense[k].history;
-                        const Eigen::Matrix3d R(
-                            Eigen::AngleAxisd(0.05 * u(rng), Vec(u(rng), u(rng), u(rng)).normalized()));
+                        // (in 2D about z: a 2D batch's vectors have z = 0, vec3.hpp, and a
+                        // model may work on x and y alone, as `linear` does)
+                        const Vec axis = Vec(u(rng), u(rng), u(rng)).normalized();
+                        const Eigen::Matrix3d R(Eigen::AngleAxisd(0.05 * u(rng), dim == 2 ? Vec::UnitZ() : axis));
                         rows[k].normal = R * rows[k].normal;
                     }
                 }
