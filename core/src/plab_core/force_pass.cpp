@@ -230,7 +230,14 @@ void World::find_still_instances() {
     still_group_.assign(ng, 1);
     const std::uint8_t* fixity = bodies.fixity.data();
     const int* group = bodies.group.data();
-    for (std::size_t i = 0; i < bodies.size(); ++i) still_group_[group[i]] &= fixity[i] == dof_all;
+    // by runs of one group (bodies are made group by group): a flag in a
+    // register, not a load and store of the group's per body
+    for (std::size_t i = 0; i < bodies.size();) {
+        const int g = group[i];
+        bool still = true;
+        for (; i < bodies.size() && group[i] == g; ++i) still &= fixity[i] == dof_all;
+        still_group_[g] &= still;
+    }
     std::fill(still_instance_.begin(), still_instance_.end(), 1);
     for (std::size_t a = 0; a < ng; ++a)
         for (std::size_t b = 0; b < ng; ++b) {
