@@ -383,7 +383,7 @@ struct SphDensitySummation {
         partial_.resize(n_chunks * width);
         first_.resize(n_chunks);
         last_.resize(n_chunks);
-#pragma omp parallel for schedule(dynamic) if (n_chunks > 1)
+#pragma omp parallel for schedule(static) if (n_chunks > 1)
         for (std::size_t c = 0; c < n_chunks; ++c)
             sum_chunk(v, W, c * per_chunk, std::min<std::size_t>(v.contact_count, (c + 1) * per_chunk),
                       partial_.data() + c * width, first_[c], last_[c]);

@@ -295,7 +295,7 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     else s.forces_zero = false;
     int failed = 0;
     bool exceeded = false;
-#pragma omp parallel for schedule(dynamic) reduction(| : failed, exceeded) if (n >= parallel_min)
+#pragma omp parallel for schedule(static) reduction(| : failed, exceeded) if (n >= parallel_min)
     for (std::uint32_t c = c0; c < c1; ++c) {
         Chunk& ch = chunks_[c];
         ch.forces_only = dense && at_centres;
