@@ -203,7 +203,7 @@ void World::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
     const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
     s.forces_zero = false;  // (any stage may write the outputs)
     int failed = 0;
-#pragma omp parallel for schedule(dynamic) reduction(| : failed) if (n >= parallel_min)
+#pragma omp parallel for schedule(static) reduction(| : failed) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::size_t o = b * kContactBatch, m = std::min(kContactBatch, n - o);
         if (call_model(inst, s, o, m, stage, read_cols.data(), true) != 0) failed = 1;
@@ -397,7 +397,7 @@ void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, c
 void World::scatter_to_chunks(std::uint32_t si) {
     const std::size_t n = sets_[si]->size();
     sets_[si]->batch_energy.assign(kBatchEnergies * ((n + kContactBatch - 1) / kContactBatch), 0.0);
-#pragma omp parallel for schedule(dynamic) if (n >= parallel_min)
+#pragma omp parallel for schedule(static) if (n >= parallel_min)
     for (std::uint32_t c = set_chunks_[si]; c < set_chunks_[si + 1]; ++c) {
         Chunk& ch = chunks_[c];
         ch.forces_only = false;
