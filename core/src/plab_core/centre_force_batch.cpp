@@ -33,11 +33,9 @@ bool pack_centre_loop(const Bodies& B, const ContactSet& s, const OptionalInputs
         d.end2[a] = j;
         // (no contact point: readers recompute it, World::contact_point)
         if (Dim == 2) {
-            const Vec &xi = B.position[i], &xj = B.position[j];
-            const double inv = 1.0 / dist;
-            const bool apart = dist > 0;  // (else the normal is x)
-            d.normal[3 * a] = apart ? (xj.x() - xi.x()) * inv : 1.0;
-            d.normal[3 * a + 1] = apart ? (xj.y() - xi.y()) * inv : 0.0;
+            const PlaneNormal n = centre_normal_2d(B.position[i], B.position[j], dist);
+            d.normal[3 * a] = n.x;
+            d.normal[3 * a + 1] = n.y;
             d.normal[3 * a + 2] = 0.0;
             d.rel_velocity[3 * a] = B.velocity[j].x() - B.velocity[i].x();
             d.rel_velocity[3 * a + 1] = B.velocity[j].y() - B.velocity[i].y();

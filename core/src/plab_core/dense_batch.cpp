@@ -110,9 +110,8 @@ namespace {
 inline PairKinematics ball_pair_kinematics_2d(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
                                               double gap) {
     const double xi = B.position[i].x(), yi = B.position[i].y(), xj = B.position[j].x(), yj = B.position[j].y();
-    const double inv = 1.0 / dist;
-    const bool apart = dist > 0;  // (else the normal is x, as centre_normal())
-    const double nx = apart ? (xj - xi) * inv : 1.0, ny = apart ? (yj - yi) * inv : 0.0;
+    const PlaneNormal n = centre_normal_2d(B.position[i], B.position[j], dist);
+    const double nx = n.x, ny = n.y;
     const double reach = ri + 0.5 * gap;
     const double px = xi + nx * reach, py = yi + ny * reach;
     const double a1x = px - xi, a1y = py - yi, a2x = px - xj, a2y = py - yj;

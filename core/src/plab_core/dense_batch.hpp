@@ -172,6 +172,14 @@ struct PairKinematics {
 inline Vec centre_normal(const Vec& xi, const Vec& xj, double dist) {
     return dist > 0 ? Vec((xj - xi) * (1.0 / dist)) : Vec::UnitX();
 }
+// centre_normal() in the plane (a 2D world: z = 0), the same arithmetic on
+// x and y; its z is zero.
+struct PlaneNormal { double x, y; };
+inline PlaneNormal centre_normal_2d(const Vec& xi, const Vec& xj, double dist) {
+    const double inv = 1.0 / dist;
+    const bool apart = dist > 0;  // (else the normal is x)
+    return {apart ? (xj.x() - xi.x()) * inv : 1.0, apart ? (xj.y() - xi.y()) * inv : 0.0};
+}
 // The contact point of two balls: on the normal from ball i's centre xi,
 // its radius ri plus half the gap further (the middle of the overlap).
 inline Vec ball_contact_point(const Vec& xi, const Vec& normal, double ri, double gap) {
