@@ -256,15 +256,15 @@ UnpackedSums unpack_loop(ContactSet& s, const DenseBatch& d, double* fm, std::si
             double m1 = r1[0] * -f2[1] - r1[1] * -f2[0];
             double m2 = r2[0] * f2[1] - r2[1] * f2[0];
             if (pure_moments) { m1 += d.moment1[3 * a + 2]; m2 += d.moment2[3 * a + 2]; }
-            s1[0] += -f2[0]; s1[1] += -f2[1]; s1[2] += m1;  // (x - f and x + (-f): the same bits)
-            s2[0] += f2[0]; s2[1] += f2[1]; s2[2] += m2;
+            add_to_slot_2d(s1, -f2[0], -f2[1], m1);  // (x - f and x + (-f): the same bits)
+            add_to_slot_2d(s2, f2[0], f2[1], m2);
             continue;
         }
         Vec m1 = Vec(&d.arm1[3 * a]).cross(-f2);
         Vec m2 = Vec(&d.arm2[3 * a]).cross(f2);
         if (pure_moments) { m1 += Vec(&d.moment1[3 * a]); m2 += Vec(&d.moment2[3 * a]); }
-        for (int c = 0; c < 3; ++c) { s1[c] += -f2[c]; s1[3 + c] += m1[c]; }
-        for (int c = 0; c < 3; ++c) { s2[c] += f2[c]; s2[3 + c] += m2[c]; }
+        add_to_slot_3d(s1, -f2, m1);
+        add_to_slot_3d(s2, f2, m2);
     }
     return e;
 }

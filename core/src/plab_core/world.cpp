@@ -465,7 +465,7 @@ template <int Dim, bool Energies, bool SpinFixed = false>
 void kick_free_block(Bodies& bodies, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
                      double& kinetic, double& boundary) {
     const KickColumns B(bodies);
-    const std::uint8_t spin_fixed = Dim == 3 ? (dof_rx | dof_ry | dof_rz) : dof_rz;  // (explicitly: 2D's rx, ry are implicit)
+    const std::uint8_t spin_fixed = bodies.rotation_dofs();  // (explicitly: 2D's rx, ry are implicit)
     for (std::size_t i = i0; i < i1; ++i) {
         // on copies, stored whole: the energy sums read them back from
         // registers, not through a store of parts and a wider load
@@ -530,7 +530,7 @@ void World::kick_block_of_bodies(std::size_t b, double h, bool closing) {
     }
     fixed &= ~bodies.implicit_fixity();
     every &= ~bodies.implicit_fixity();
-    const std::uint8_t spin = dim == 3 ? (dof_rx | dof_ry | dof_rz) : dof_rz;
+    const std::uint8_t spin = bodies.rotation_dofs();
     double kinetic = 0, boundary = 0;
     if (fixed == spin && every == spin) {  // rotations fixed, translations free, in every body
         if (dim == 3)

@@ -24,6 +24,17 @@ namespace plab {
 // with their history and the columns of the contact batch. Rows are sorted by
 // the ids of the two ends (World::row_keys); history is carried across
 // rebuilds by that key.
+// The partial-sum slot layouts (World::slot_width): 2D fx, fy and the
+// moment about z; 3D force, then moment.
+inline void add_to_slot_2d(double* slot, double fx, double fy, double mz) {
+    slot[0] += fx;
+    slot[1] += fy;
+    slot[2] += mz;
+}
+inline void add_to_slot_3d(double* slot, const Vec& f, const Vec& m) {
+    for (int c = 0; c < 3; ++c) { slot[c] += f[c]; slot[3 + c] += m[c]; }
+}
+
 struct ContactSet {
     bool with_wall = false;
     std::vector<std::int32_t> end1, end2;
@@ -306,8 +317,8 @@ private:
     // centre-force path: 3D fx, fy, fz; 2D fx, fy.
     std::size_t slot_width(bool forces_only) const { return dim == 2 ? (forces_only ? 2 : 3) : (forces_only ? 3 : 6); }
     void add_to_slot(double* slot, const Vec& f, const Vec& m) const {
-        if (dim == 2) { slot[0] += f[0]; slot[1] += f[1]; slot[2] += m[2]; return; }
-        for (int c = 0; c < 3; ++c) { slot[c] += f[c]; slot[3 + c] += m[c]; }
+        if (dim == 2) add_to_slot_2d(slot, f[0], f[1], m[2]);
+        else add_to_slot_3d(slot, f, m);
     }
     // A slot's sums added to a body's force f and moment m (the reader of
     // the layout add_to_slot() and the centre-force path write).
