@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <string>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -444,10 +445,18 @@ private:
                    std::int64_t& first, std::int64_t& last) const {
         const std::size_t stride = this->stride();
         std::int32_t lo = std::numeric_limits<std::int32_t>::max(), hi = -1;
-        for (std::size_t k = k0; k < k1; ++k) {  // (wall rows: end 2 is a facet, not summed below)
-            const std::int32_t e2 = v.contact_end2_is_wall[k] ? v.contact_end1[k] : v.contact_end2[k];
-            lo = std::min(lo, std::min(v.contact_end1[k], e2));
-            hi = std::max(hi, std::max(v.contact_end1[k], e2));
+        // (two loops without a branch, which take a vector of rows at a time;
+        // wall rows: end 2 is a facet, not summed below)
+        const std::int32_t *end1 = v.contact_end1, *end2 = v.contact_end2;
+        const std::uint8_t* is_wall = v.contact_end2_is_wall;
+        for (std::size_t k = k0; k < k1; ++k) {
+            lo = std::min(lo, end1[k]);
+            hi = std::max(hi, end1[k]);
+        }
+        for (std::size_t k = k0; k < k1; ++k) {
+            const std::int32_t ball = -std::int32_t(is_wall[k] == 0);  // all ones for a ball, 0 for a wall
+            lo = std::min(lo, (end2[k] & ball) | (std::numeric_limits<std::int32_t>::max() & ~ball));
+            hi = std::max(hi, (end2[k] & ball) | ~ball);  // (a wall: -1)
         }
         first = lo;
         last = hi;
@@ -471,30 +480,58 @@ private:
             sum[stride * std::size_t(held_i)] = held_mass;
             if (normalised_) sum[stride * std::size_t(held_i) + 1] = held_volume;
         };
-        for (std::size_t k = k0; k < k1; ++k) {
-            if (v.contact_end2_is_wall[k]) continue;
-            const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
-            const double r = v.contact_distance ? v.contact_distance[k] : distance(v, i, j);  // (ABI 6)
-            if (r >= support) continue;
-            const double w = norm * plab::sph::detail::shape(kind_, r * inv_h);
-            if (i != held_i) {
-                put_back();
-                held_i = i;
-                held_mass = sum[stride * std::size_t(i)];
-                if (normalised_) held_volume = sum[stride * std::size_t(i) + 1];
+        // In blocks: each pair's W first, in a loop of its own (a vector of
+        // pairs per instruction; interleaved with the sums, which wait on
+        // one another, it took one pair at a time), then the sums
+        constexpr std::size_t kBlock = 512;
+        double r_of[kBlock], w_of[kBlock];
+        for (std::size_t b0 = k0; b0 < k1; b0 += kBlock) {
+            const std::size_t n = std::min(kBlock, k1 - b0);
+            const double* r = v.contact_distance ? v.contact_distance + b0 : r_of;  // (ABI 6)
+            if (!v.contact_distance)
+                for (std::size_t a = 0; a < n; ++a) {  // (a wall row's is not used)
+                    const std::size_t k = b0 + a;
+                    r_of[a] = v.contact_end2_is_wall[k] ? inf : distance(v, v.contact_end1[k], v.contact_end2[k]);
+                }
+            kernel_values(r, n, inv_h, norm, w_of);
+            for (std::size_t a = 0; a < n; ++a) {
+                const std::size_t k = b0 + a;
+                if (v.contact_end2_is_wall[k] || r[a] >= support) continue;
+                const int32_t i = v.contact_end1[k], j = v.contact_end2[k];
+                const double w = w_of[a];
+                if (i != held_i) {
+                    put_back();
+                    held_i = i;
+                    held_mass = sum[stride * std::size_t(i)];
+                    if (normalised_) held_volume = sum[stride * std::size_t(i) + 1];
+                }
+                held_mass += v.mass[j] * w;
+                if (normalised_) held_volume += v.mass[j] / rho[j] * w;
+                if (j == held_i) {  // (a ball paired with itself: not in a neighbour list, but kept in order)
+                    held_mass += v.mass[i] * w;
+                    if (normalised_) held_volume += v.mass[i] / rho[i] * w;
+                    continue;
+                }
+                double* sum_j = sum + stride * std::size_t(j);
+                sum_j[0] += v.mass[i] * w;
+                if (normalised_) sum_j[1] += v.mass[i] / rho[i] * w;
             }
-            held_mass += v.mass[j] * w;
-            if (normalised_) held_volume += v.mass[j] / rho[j] * w;
-            if (j == held_i) {  // (a ball paired with itself: not in a neighbour list, but kept in order)
-                held_mass += v.mass[i] * w;
-                if (normalised_) held_volume += v.mass[i] / rho[i] * w;
-                continue;
-            }
-            double* sum_j = sum + stride * std::size_t(j);
-            sum_j[0] += v.mass[i] * w;
-            if (normalised_) sum_j[1] += v.mass[i] / rho[i] * w;
         }
         put_back();
+    }
+
+    // W(r) = norm f(r/h) of n pairs, the kernel's shape fixed at compile
+    // time: no switch per pair, so the loop takes a vector of pairs at a time
+    void kernel_values(const double* r, std::size_t n, double inv_h, double norm, double* w) const {
+        using plab::sph::KernelKind;
+        const auto values = [&](auto kind) {
+            for (std::size_t a = 0; a < n; ++a) w[a] = norm * plab::sph::detail::shape(decltype(kind)::value, r[a] * inv_h);
+        };
+        switch (kind_) {
+        case KernelKind::wendland_c2: return values(std::integral_constant<KernelKind, KernelKind::wendland_c2>{});
+        case KernelKind::cubic_spline: return values(std::integral_constant<KernelKind, KernelKind::cubic_spline>{});
+        case KernelKind::quintic_spline: return values(std::integral_constant<KernelKind, KernelKind::quintic_spline>{});
+        }
     }
 
     // |x_j - x_i| with the host's arithmetic (its range test: the same bits
