@@ -349,22 +349,33 @@ std::vector<double> Simulation::history(const std::string& name) const {
     throw InputError("histories", "no history named \"" + name + "\"");
 }
 
+Simulation::DueOutputs Simulation::due_after_step() const {
+    const World& w = *world_;
+    const auto at = [&](double interval, double next) {
+        return interval > 0 && !out_dir_.empty() && w.time + 1e-12 >= next;
+    };
+    return {history_every_ > 0 && !history_cols_.empty() && w.step_count % std::uint64_t(history_every_) == 0,
+            at(vtk_interval_, next_vtk_time_), at(png_interval_, next_png_time_),
+            at(checkpoint_every_, next_checkpoint_time_)};
+}
+
 void Simulation::after_step() {
     const World& w = *world_;
-    if (history_every_ > 0 && !history_cols_.empty() && w.step_count % std::uint64_t(history_every_) == 0) {
+    const DueOutputs due = due_after_step();
+    if (due.history) {
         std::vector<double> row;
         for (const auto& c : history_cols_) row.push_back(c.sample(w));
         history_rows_.push_back(std::move(row));
     }
-    if (vtk_interval_ > 0 && !out_dir_.empty() && w.time + 1e-12 >= next_vtk_time_) {
+    if (due.vtk) {
         write_vtk_snapshot();
         next_vtk_time_ += vtk_interval_;
     }
-    if (png_interval_ > 0 && !out_dir_.empty() && w.time + 1e-12 >= next_png_time_) {
+    if (due.png) {
         write_png_snapshot();
         next_png_time_ += png_interval_;
     }
-    if (checkpoint_every_ > 0 && !out_dir_.empty() && w.time + 1e-12 >= next_checkpoint_time_) {
+    if (due.checkpoint) {
         save_checkpoint(checkpoint_path());
         while (next_checkpoint_time_ <= w.time + 1e-12) next_checkpoint_time_ += checkpoint_every_;
     }
@@ -379,11 +390,29 @@ void Simulation::cycle(long n) {
     }
     const bool progress = !quiet_ && isatty(STDERR_FILENO);
     auto last = std::chrono::steady_clock::now();
-    for (long k = 0; k < n; ++k) {
+    // The contact forces are written on the steps after which something
+    // reads them (World::contact_forces_wanted): outputs and history rows
+    // due, the cycle's last step (the next command, the run's summary) or a
+    // stop. (Asked inside step(), where its time and count are those that
+    // after_step() sees.)
+    long k = 0;
+    struct Unset {
+        World& w;
+        ~Unset() { w.contact_forces_wanted = nullptr; }
+    } unset{w};
+    w.contact_forces_wanted = [&] { return k + 1 >= n || stop_signal() != 0 || due_after_step().any(); };
+    for (; k < n; ++k) {
         w.step();
         ++run_.steps;
         after_step();
-        if (stop_signal()) break;  // the step is complete: stop here, run() writes the checkpoint
+        if (stop_signal()) {  // the step is complete: stop here, run() writes the checkpoint
+            if (w.contact_forces_current()) break;
+            ++k;  // (the signal came after the step asked): one more, which writes them
+            w.step();
+            ++run_.steps;
+            after_step();
+            break;
+        }
         if (progress && (k & 255) == 0) {
             const auto now = std::chrono::steady_clock::now();
             if (std::chrono::duration<double>(now - last).count() > 0.5) {

@@ -148,6 +148,12 @@ private:
     void keep_last_good();
     std::string write_last_good() const;  // its path, or "" when none is kept
     void after_step();
+    // what after_step() writes at the world's step and time
+    struct DueOutputs {
+        bool history, vtk, png, checkpoint;
+        bool any() const { return history || vtk || png || checkpoint; }
+    };
+    DueOutputs due_after_step() const;
     void finish_run(std::clock_t cpu0);
     void write_outputs() const;
     void check_domain(const std::string& where, std::size_t first) const;

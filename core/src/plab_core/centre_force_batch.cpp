@@ -86,7 +86,8 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
 }
 
 // Back from the packed rows of batch [begin, end): history and force to
-// the set's columns (their readers: outputs, stress, checkpoints), the
+// the set's columns (their readers: outputs, stress; the force only on a
+// step whose forces are read, World::contact_forces_wanted), the
 // batch's least step limit to World::batch_limits_ (the stable step), and
 // each row's force added, in row order, to the chunk's partial sums: -F on
 // end 1, +F on end 2, no moment.
@@ -99,6 +100,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     const bool with_z = dim == 3;  // (2D slots: fx, fy)
     const std::int32_t lo = ch.lo;
     double* force = s.force.data();
+    const bool keep = contact_forces_kept_;  // (World::contact_forces_wanted)
     // The rows of one end 1 come in a run (a neighbour list): its sum is
     // kept in registers over the run, not loaded and stored back per row,
     // which made every row wait for the previous one's store. The sums are
@@ -113,7 +115,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     };
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.rows[a];
-        copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
+        if (keep) copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
         const double fx = d.force[3 * a], fy = d.force[3 * a + 1], fz = d.force[3 * a + 2];
         if (d.end1[a] != held_body) {
             if (held_body >= 0) put_back();
@@ -134,6 +136,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
         if (with_z) f2[2] += fz;
     }
     if (held_body >= 0) put_back();
+    if (!keep) keep_non_finite_forces(s, d);
     if (inst.uses(PLAB_IO_DT_LIMIT)) {  // the batch's least step limit, its first row (World::batch_limits_)
         BatchLimit& least = batch_limits_[si][begin / kContactBatch];
         for (std::size_t a = 0; a < d.count; ++a)

@@ -235,11 +235,11 @@ struct UnpackedSums { double strain = 0, slip = 0, dashpot = 0, broken = 0; };
 // component of r x F is worked out.
 template <int Dim>
 UnpackedSums unpack_loop(ContactSet& s, const DenseBatch& d, double* fm, std::size_t width, std::int32_t lo,
-                         bool pure_moments, bool breaks) {
+                         bool pure_moments, bool breaks, bool keep_forces) {
     UnpackedSums e;
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
-        copy3(s.force.data(), k, d.force, a);
+        if (keep_forces) copy3(s.force.data(), k, d.force, a);
         if (!s.packed) {  // a packed set recomputes them on demand (contact_point())
             copy3(s.point.data(), k, d.point, a);
             copy3(s.normal.data(), k, d.normal, a);
@@ -273,8 +273,10 @@ UnpackedSums unpack_loop(ContactSet& s, const DenseBatch& d, double* fm, std::si
 // Back from the packed rows of batch [begin, end): history, and what the
 // readers of the contact columns use (force, moments, stiffnesses, step
 // limit: outputs, stress, stable step, bond breaks, checkpoints; normal and
-// point they recompute, World::contact_point); then each row's force and moments added to the chunk's partial
-// sums, and the batch's energy sums, as scatter_rows() does for full columns.
+// point they recompute, World::contact_point; the force only on a step
+// whose forces are read, World::contact_forces_wanted); then each row's
+// force and moments added to the chunk's partial sums, and the batch's
+// energy sums, as scatter_rows() does for full columns.
 void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
                         const Chunk& ch) {
     ContactSet& s = *sets_[si];
@@ -283,8 +285,10 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     const std::size_t width = slot_width(false);
     const std::int32_t lo = ch.lo;
     const bool pure_moments = inst.uses(PLAB_IO_MOMENTS), breaks = inst.uses(PLAB_IO_BREAK_ENERGY);
-    const UnpackedSums sums = dim == 2 ? unpack_loop<2>(s, d, fm, width, lo, pure_moments, breaks)
-                                       : unpack_loop<3>(s, d, fm, width, lo, pure_moments, breaks);
+    const bool keep = contact_forces_kept_;
+    const UnpackedSums sums = dim == 2 ? unpack_loop<2>(s, d, fm, width, lo, pure_moments, breaks, keep)
+                                       : unpack_loop<3>(s, d, fm, width, lo, pure_moments, breaks, keep);
+    if (!keep) keep_non_finite_forces(s, d);
     const double strain = sums.strain, slip = sums.slip, dashpot = sums.dashpot, broken = sums.broken;
     scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);

@@ -9,6 +9,7 @@
 
 #include "world.hpp"
 
+#include <cstring>
 #include <iterator>
 #include <limits>
 #include <memory>
@@ -84,6 +85,23 @@ inline void put(double* col, std::size_t a, const Vec& v) {
 }
 inline void copy3(double* to, std::size_t k, const double* from, std::size_t a) {
     to[3 * k] = from[3 * a]; to[3 * k + 1] = from[3 * a + 1]; to[3 * k + 2] = from[3 * a + 2];
+}
+
+// The packed rows' forces back to the set's column, when the sweep did not
+// write them row by row (World::contact_forces_wanted): only a batch with a
+// non-finite force, which the diagnostic looks for there.
+inline void keep_non_finite_forces(ContactSet& s, const DenseBatch& d) {
+    // the largest exponent field, all ones only for an inf or a NaN (an
+    // integer max takes a vector of values at a time; a test per value did not)
+    constexpr std::uint64_t kExponent = 0x7ff0000000000000ull;
+    std::uint64_t top = 0;
+    for (std::size_t i = 0; i < 3 * std::size_t(d.count); ++i) {
+        std::uint64_t b;
+        std::memcpy(&b, &d.force[i], sizeof b);
+        top = std::max(top, b & kExponent);
+    }
+    if (top != kExponent) return;
+    for (std::size_t a = 0; a < d.count; ++a) copy3(s.force.data(), d.rows[a], d.force, a);
 }
 
 // The optional inputs of a packed row that its model reads (abi.h,

@@ -204,6 +204,7 @@ void World::prepare() {
     // incremental history (a re-evaluation must not add a shear increment)
     const double dt = last_dt;
     last_dt = 0;
+    contact_forces_kept_ = true;  // (also after a step that failed before its forces)
     force_pass();
     cache_inverse_masses();
     body_energies(0.0);
@@ -342,6 +343,7 @@ void World::advance() {
     time += dt;
     ++step_count;
     const bool post_force = has_passes(PLAB_PHASE_POST_FORCE);
+    contact_forces_kept_ = !contact_forces_wanted || contact_forces_wanted();
     force_pass(post_force ? 0.0 : 0.5 * dt);  // the closing half kick inside reduce(), unless a pass comes between
     {
         PhaseTimer t{phase_seconds[ph_motion]};
