@@ -384,7 +384,11 @@ struct SphDensitySummation {
         partial_.resize(n_chunks * width);
         first_.resize(n_chunks);
         last_.resize(n_chunks);
-#pragma omp parallel for schedule(static) if (n_chunks > 1)
+        // (dynamic: the last chunk is mostly a short one, 9 on the dam break,
+        // so a static split gave one thread 5 full chunks and the other 3 and
+        // the short one; each chunk's sums are the same whichever thread
+        // makes them, so the bits are too)
+#pragma omp parallel for schedule(dynamic) if (n_chunks > 1)
         for (std::size_t c = 0; c < n_chunks; ++c)
             sum_chunk(v, W, c * per_chunk, std::min<std::size_t>(v.contact_count, (c + 1) * per_chunk),
                       partial_.data() + c * width, first_[c], last_[c]);
