@@ -4,7 +4,8 @@
 // cache, spares the host writing (and the model reading back) the inputs and
 // outputs of every candidate row in full-length columns. `row` leads back to
 // the persistent contact row, which keeps the history and what readers of
-// the contact columns need (force_sweep, docs/architecture.md).
+// the contact columns need (World::force_sweep(); the force only on the
+// steps that read it, World::contact_forces_wanted).
 #pragma once
 
 #include "world.hpp"
