@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 namespace plab {
 
@@ -32,7 +33,10 @@ struct RangeRows {
 // In two loops: the geometry and flags of every row first, then the lists.
 // In one loop the list stores waited for their addresses, the counts, which
 // wait for each row's square root: the rows no longer overlapped.
-template <bool ByDistance, bool Bonds>
+// Forget: the model keeps history, so the rows that just left the range
+// are listed (idle) to have it reset; a model without history (SPH) needs
+// neither that list nor the live flags.
+template <bool ByDistance, bool Bonds, bool Forget>
 std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t begin, std::size_t end,
                       std::uint32_t* row, double* distance, std::uint32_t* idle, std::size_t& n_idle) {
     const std::size_t n = end - begin;  // at most kContactBatch
@@ -61,10 +65,12 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
         c.active_col[k] = active;
         distance[n_active] = dist_of[r];
         row[n_active] = std::uint32_t(k);
-        idle[n_idle] = std::uint32_t(k);
         n_active += active;
-        n_idle += !active & (c.live[k] != 0);  // just left the range: history to forget
-        c.live[k] = active;
+        if (Forget) {
+            idle[n_idle] = std::uint32_t(k);
+            n_idle += !active & (c.live[k] != 0);  // just left the range: history to forget
+            c.live[k] = active;
+        }
     }
     return n_active;
 }
@@ -90,13 +96,14 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
     double unused[kContactBatch];  // where an output the caller does not take goes
     if (!distance) distance = unused;
     std::size_t n_idle = 0, n_active;
-    const bool bonds = in_range.persist >= 0;
-    if (in_range.by_distance)
-        n_active = bonds ? test_rows<true, true>(c, in_range, begin, end, row, distance, idle, n_idle)
-                         : test_rows<true, false>(c, in_range, begin, end, row, distance, idle, n_idle);
-    else
-        n_active = bonds ? test_rows<false, true>(c, in_range, begin, end, row, distance, idle, n_idle)
-                         : test_rows<false, false>(c, in_range, begin, end, row, distance, idle, n_idle);
+    const bool bonds = in_range.persist >= 0, forget = stride > 0;  // (a bond is kept in the history)
+    const auto test = [&](auto by_distance) {
+        constexpr bool D = decltype(by_distance)::value;
+        if (bonds) return test_rows<D, true, true>(c, in_range, begin, end, row, distance, idle, n_idle);
+        return forget ? test_rows<D, false, true>(c, in_range, begin, end, row, distance, idle, n_idle)
+                      : test_rows<D, false, false>(c, in_range, begin, end, row, distance, idle, n_idle);
+    };
+    n_active = in_range.by_distance ? test(std::true_type{}) : test(std::false_type{});
     for (std::size_t r = 0; r < n_idle; ++r)
         for (std::size_t h = 0; h < stride; ++h) s.history[idle[r] * stride + h] = inst.desc->history[h].default_value;
     return n_active;
