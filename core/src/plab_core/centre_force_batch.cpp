@@ -20,34 +20,23 @@ namespace {
 template <int Dim>
 bool pack_centre_loop(const Bodies& B, const ContactSet& s, const OptionalInputs& optional, double max_overlap,
                       std::size_t n_active, DenseBatch& d) {
-    bool exceeded = false;
-    for (std::size_t a = 0; a < n_active; ++a) {
-        const std::size_t k = d.rows[a];
-        const std::int32_t i = s.end1[k], j = s.end2[k];
-        // radii and masses from the bodies (in cache) rather than the set's
-        // long columns, with fill_pair_constants()'s arithmetic
-        const double ri = B.radius[i], rj = B.radius[j], mi = B.mass[i], mj = B.mass[j];
-        const double dist = d.distances[a], gap = surface_gap(dist, ri, rj);
-        d.gap[a] = gap;
-        d.end1[a] = i;
-        d.end2[a] = j;
-        // (no contact point: readers recompute it, World::contact_point)
-        if (Dim == 2) {
-            const PlaneNormal n = centre_normal_2d(B.position[i], B.position[j], dist);
-            d.normal[3 * a] = n.x;
-            d.normal[3 * a + 1] = n.y;
-            d.normal[3 * a + 2] = 0.0;
-            d.rel_velocity[3 * a] = B.velocity[j].x() - B.velocity[i].x();
-            d.rel_velocity[3 * a + 1] = B.velocity[j].y() - B.velocity[i].y();
-            d.rel_velocity[3 * a + 2] = 0.0;
-        } else {
-            put(d.normal, a, centre_normal(B.position[i], B.position[j], dist));
-            put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
-        }
-        optional.put_row(d, a, Vec::Zero(), ri, rj, mi, mj);
-        exceeded |= -gap > max_overlap * std::min(ri, rj);
-    }
-    return exceeded;
+    // (no contact point: readers recompute it, World::contact_point; no spin)
+    return pack_rows(B, s, optional, max_overlap, n_active, d,
+                     [&](std::size_t a, std::int32_t i, std::int32_t j, double, double dist, double) {
+                         if (Dim == 2) {
+                             const PlaneNormal n = centre_normal_2d(B.position[i], B.position[j], dist);
+                             d.normal[3 * a] = n.x;
+                             d.normal[3 * a + 1] = n.y;
+                             d.normal[3 * a + 2] = 0.0;
+                             d.rel_velocity[3 * a] = B.velocity[j].x() - B.velocity[i].x();
+                             d.rel_velocity[3 * a + 1] = B.velocity[j].y() - B.velocity[i].y();
+                             d.rel_velocity[3 * a + 2] = 0.0;
+                         } else {
+                             put(d.normal, a, centre_normal(B.position[i], B.position[j], dist));
+                             put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
+                         }
+                         return Vec(Vec::Zero());
+                     });
 }
 } // namespace
 
@@ -99,8 +88,7 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     const std::size_t width = slot_width(true);
     const bool with_z = dim == 3;  // (2D slots: fx, fy)
     const std::int32_t lo = ch.lo;
-    double* force = s.force.data();
-    const bool keep = contact_forces_kept_;  // (World::contact_forces_wanted)
+    write_forces(s, d, contact_forces_kept_);  // (point and normal: recomputed on demand, the set is packed)
     // The rows of one end 1 come in a run (a neighbour list): its sum is
     // kept in registers over the run, not loaded and stored back per row,
     // which made every row wait for the previous one's store. The sums are
@@ -114,8 +102,6 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
         if (with_z) held[2] = sz;
     };
     for (std::size_t a = 0; a < d.count; ++a) {
-        const std::size_t k = d.rows[a];
-        if (keep) copy3(force, k, d.force, a);  // (point and normal: recomputed on demand, the set is packed)
         const double fx = d.force[3 * a], fy = d.force[3 * a + 1], fz = d.force[3 * a + 2];
         if (d.end1[a] != held_body) {
             if (held_body >= 0) put_back();
@@ -136,7 +122,6 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
         if (with_z) f2[2] += fz;
     }
     if (held_body >= 0) put_back();
-    if (!keep) keep_non_finite_forces(s, d);
     if (inst.uses(PLAB_IO_DT_LIMIT)) {  // the batch's least step limit, its first row (World::batch_limits_)
         BatchLimit& least = batch_limits_[si][begin / kContactBatch];
         for (std::size_t a = 0; a < d.count; ++a)

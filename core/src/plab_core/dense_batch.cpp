@@ -139,27 +139,17 @@ inline PairKinematics ball_pair_kinematics_2d(const Bodies& B, std::int32_t i, s
 template <int Dim>
 bool pack_rows_in_range(const Bodies& B, const ContactSet& s, const OptionalInputs& optional, double max_overlap,
                         std::size_t n_active, DenseBatch& d) {
-    bool exceeded = false;
-    for (std::size_t a = 0; a < n_active; ++a) {
-        const std::size_t k = d.row[a];
-        const std::int32_t i = s.end1[k], j = s.end2[k];
-        const double ri = B.radius[i], rj = B.radius[j], dist = d.distance[a];
-        const double gap = surface_gap(dist, ri, rj);
-        d.gap[a] = gap;
-        const PairKinematics p =
-            Dim == 2 ? ball_pair_kinematics_2d(B, i, j, ri, dist, gap) : ball_pair_kinematics(B, i, j, ri, dist, gap);
-        d.end1[a] = i;
-        d.end2[a] = j;
-        put(d.normal, a, p.normal);
-        if (!s.packed) put(d.point, a, p.point);
-        put(d.arm1, a, p.arm1);
-        put(d.arm2, a, p.arm2);
-        put(d.rel_velocity, a, p.rel_velocity);
-        // masses from the bodies (in cache) rather than the set's columns
-        optional.put_row(d, a, p.rel_angular_velocity, ri, rj, B.mass[i], B.mass[j]);
-        exceeded |= -gap > max_overlap * std::min(ri, rj);
-    }
-    return exceeded;
+    return pack_rows(B, s, optional, max_overlap, n_active, d,
+                     [&](std::size_t a, std::int32_t i, std::int32_t j, double ri, double dist, double gap) {
+                         const PairKinematics p = Dim == 2 ? ball_pair_kinematics_2d(B, i, j, ri, dist, gap)
+                                                           : ball_pair_kinematics(B, i, j, ri, dist, gap);
+                         put(d.normal, a, p.normal);
+                         if (!s.packed) put(d.point, a, p.point);
+                         put(d.arm1, a, p.arm1);
+                         put(d.arm2, a, p.arm2);
+                         put(d.rel_velocity, a, p.rel_velocity);
+                         return p.rel_angular_velocity;
+                     });
 }
 } // namespace
 
@@ -242,11 +232,10 @@ struct UnpackedSums { double strain = 0, slip = 0, dashpot = 0, broken = 0; };
 // component of r x F is worked out.
 template <int Dim>
 UnpackedSums unpack_loop(ContactSet& s, const DenseBatch& d, double* fm, std::size_t width, std::int32_t lo,
-                         bool pure_moments, bool breaks, bool keep_forces) {
+                         bool pure_moments, bool breaks) {
     UnpackedSums e;
     for (std::size_t a = 0; a < d.count; ++a) {
         const std::size_t k = d.row[a];
-        if (keep_forces) copy3(s.force.data(), k, d.force, a);
         if (!s.packed) {  // a packed set recomputes them on demand (contact_point())
             copy3(s.point.data(), k, d.point, a);
             copy3(s.normal.data(), k, d.normal, a);
@@ -292,10 +281,9 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     const std::size_t width = slot_width(false);
     const std::int32_t lo = ch.lo;
     const bool pure_moments = inst.uses(PLAB_IO_MOMENTS), breaks = inst.uses(PLAB_IO_BREAK_ENERGY);
-    const bool keep = contact_forces_kept_;
-    const UnpackedSums sums = dim == 2 ? unpack_loop<2>(s, d, fm, width, lo, pure_moments, breaks, keep)
-                                       : unpack_loop<3>(s, d, fm, width, lo, pure_moments, breaks, keep);
-    if (!keep) keep_non_finite_forces(s, d);
+    write_forces(s, d, contact_forces_kept_);
+    const UnpackedSums sums = dim == 2 ? unpack_loop<2>(s, d, fm, width, lo, pure_moments, breaks)
+                                       : unpack_loop<3>(s, d, fm, width, lo, pure_moments, breaks);
     const double strain = sums.strain, slip = sums.slip, dashpot = sums.dashpot, broken = sums.broken;
     scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);

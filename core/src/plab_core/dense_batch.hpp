@@ -88,20 +88,22 @@ inline void copy3(double* to, std::size_t k, const double* from, std::size_t a) 
     to[3 * k] = from[3 * a]; to[3 * k + 1] = from[3 * a + 1]; to[3 * k + 2] = from[3 * a + 2];
 }
 
-// The packed rows' forces back to the set's column, when the sweep did not
-// write them row by row (World::contact_forces_wanted): only a batch with a
-// non-finite force, which the diagnostic looks for there.
-inline void keep_non_finite_forces(ContactSet& s, const DenseBatch& d) {
-    // the largest exponent field, all ones only for an inf or a NaN (an
-    // integer max takes a vector of values at a time; a test per value did not)
-    constexpr std::uint64_t kExponent = 0x7ff0000000000000ull;
-    std::uint64_t top = 0;
-    for (std::size_t i = 0; i < 3 * std::size_t(d.count); ++i) {
-        std::uint64_t b;
-        std::memcpy(&b, &d.force[i], sizeof b);
-        top = std::max(top, b & kExponent);
+// The packed rows' forces to the set's column: all of them on a step whose
+// forces are read (World::contact_forces_wanted); on another, only a batch
+// with a non-finite force, which the NaN diagnostic looks for there.
+inline void write_forces(ContactSet& s, const DenseBatch& d, bool read) {
+    if (!read) {
+        // the largest exponent field, all ones only for an inf or a NaN (an
+        // integer max takes a vector of values at a time; a test per value did not)
+        constexpr std::uint64_t kExponent = 0x7ff0000000000000ull;
+        std::uint64_t top = 0;
+        for (std::size_t i = 0; i < 3 * std::size_t(d.count); ++i) {
+            std::uint64_t b;
+            std::memcpy(&b, &d.force[i], sizeof b);
+            top = std::max(top, b & kExponent);
+        }
+        if (top != kExponent) return;
     }
-    if (top != kExponent) return;
     for (std::size_t a = 0; a < d.count; ++a) copy3(s.force.data(), d.rows[a], d.force, a);
 }
 
@@ -252,5 +254,31 @@ void bind_rows(plab_contact_batch& b, Columns& c, std::size_t o, double* history
 
 // Calls the model once on the packed rows; returns its status.
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols);
+
+// The loop over a batch's rows in range that both packers share (d.rows and
+// d.distances, as the range test listed them): each row's ends, radii and
+// gap; then its kinematics, which kinematics(a, i, j, ri, dist, gap) writes
+// into d, returning the relative spin; then the optional inputs and the
+// overlap check. True when a row overlaps beyond max_overlap.
+template <class Kinematics>
+bool pack_rows(const Bodies& B, const ContactSet& s, const OptionalInputs& optional, double max_overlap,
+               std::size_t n_active, DenseBatch& d, Kinematics&& kinematics) {
+    bool exceeded = false;
+    for (std::size_t a = 0; a < n_active; ++a) {
+        const std::size_t k = d.rows[a];
+        const std::int32_t i = s.end1[k], j = s.end2[k];
+        // radii and masses from the bodies (in cache) rather than the set's
+        // long columns, with fill_pair_constants()'s arithmetic
+        const double ri = B.radius[i], rj = B.radius[j], dist = d.distances[a];
+        const double gap = surface_gap(dist, ri, rj);
+        d.gap[a] = gap;
+        d.end1[a] = i;
+        d.end2[a] = j;
+        const Vec rel_spin = kinematics(a, i, j, ri, dist, gap);
+        optional.put_row(d, a, rel_spin, ri, rj, B.mass[i], B.mass[j]);
+        exceeded |= -gap > max_overlap * std::min(ri, rj);
+    }
+    return exceeded;
+}
 
 } // namespace plab
