@@ -5,6 +5,7 @@
 #include <plab/contact_model.hpp>
 
 #include <cmath>
+#include <type_traits>
 #include <limits>
 
 namespace plab::linear_law {
@@ -62,6 +63,13 @@ inline double dot(const Plane& a, const Plane& b) { return a.x * b.x + a.y * b.y
 inline Vec3 pick(bool c, const Vec3& a, const Vec3& b) { return {c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z}; }
 inline Plane pick(bool c, const Plane& a, const Plane& b) { return {c ? a.x : b.x, c ? a.y : b.y}; }
 template <class V> V zero_vector() { return V{}; }
+// A row's vector from three doubles of a column, and back (a 2D row: x and
+// y; its z stored as zero).
+template <class V> V row_vector(const double* c);
+template <> [[gnu::always_inline]] inline Vec3 row_vector<Vec3>(const double* c) { return {c[0], c[1], c[2]}; }
+template <> [[gnu::always_inline]] inline Plane row_vector<Plane>(const double* c) { return {c[0], c[1]}; }
+[[gnu::always_inline]] inline void put_row_vector(double* c, const Vec3& v) { c[0] = v.x; c[1] = v.y; c[2] = v.z; }
+[[gnu::always_inline]] inline void put_row_vector(double* c, const Plane& v) { c[0] = v.x; c[1] = v.y; c[2] = 0.0; }
 
 // Keeps a stored vector (shear force, bending moment) in the current contact
 // plane: project out the normal component and restore the magnitude (PFC's
@@ -172,31 +180,15 @@ template <std::size_t Stride, bool Planar>
     if (Stride > 0) stride = Stride;
     for (std::size_t k = k0; k < k1; ++k) {
         double* h = history + k * stride;
-        if (Planar) {
-            const ResultOf<Plane> r = law_of<Plane>(p, {{normal[3 * k], normal[3 * k + 1]},
-                                                        {rel_velocity[3 * k], rel_velocity[3 * k + 1]},
-                                                        {h[0], h[1]},
-                                                        gap[k],
-                                                        eff_mass[k],
-                                                        dt});
-            h[0] = r.shear_force.x; h[1] = r.shear_force.y; h[2] = 0.0;
-            force[3 * k] = r.force.x; force[3 * k + 1] = r.force.y; force[3 * k + 2] = 0.0;
-            slip[k] += r.slip;
-            dashpot[k] += r.dashpot;
-            strain[k] = r.strain;
-        } else {
-            const Result r = law(p, {{normal[3 * k], normal[3 * k + 1], normal[3 * k + 2]},
-                                     {rel_velocity[3 * k], rel_velocity[3 * k + 1], rel_velocity[3 * k + 2]},
-                                     {h[0], h[1], h[2]},
-                                     gap[k],
-                                     eff_mass[k],
-                                     dt});
-            h[0] = r.shear_force.x; h[1] = r.shear_force.y; h[2] = r.shear_force.z;
-            force[3 * k] = r.force.x; force[3 * k + 1] = r.force.y; force[3 * k + 2] = r.force.z;
-            slip[k] += r.slip;
-            dashpot[k] += r.dashpot;
-            strain[k] = r.strain;
-        }
+        using V = std::conditional_t<Planar, Plane, Vec3>;
+        const ResultOf<V> r = law_of<V>(
+            p, {row_vector<V>(normal + 3 * k), row_vector<V>(rel_velocity + 3 * k), row_vector<V>(h), gap[k],
+                eff_mass[k], dt});
+        put_row_vector(h, r.shear_force);
+        put_row_vector(force + 3 * k, r.force);
+        slip[k] += r.slip;
+        dashpot[k] += r.dashpot;
+        strain[k] = r.strain;
         k_t[k] = stiffness;
     }
 }
