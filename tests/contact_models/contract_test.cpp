@@ -38,7 +38,8 @@ struct ContactOutput {
 // a plausible 1000 for every field and body.
 std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state, const std::vector<double>& props,
                                    int dim, double dt, const std::vector<ContactInput>& in,
-                                   const std::vector<std::vector<double>>* body_fields = nullptr) {
+                                   const std::vector<std::vector<double>>* body_fields = nullptr,
+                                   uint64_t fields_at_default = 0) {
     const std::size_t n = in.size(), hs = d.history_count;
     std::vector<int32_t> e1(n), e2(n);
     std::vector<uint8_t> active(n);
@@ -83,6 +84,7 @@ std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state
     b.stiffness_rotational = kr.data(); b.dt_limit = dtl.data(); b.accumulate1 = acc1.data(); b.accumulate2 = acc2.data();
     b.break_energy = brk.data();
     b.stage = PLAB_STAGE_FORCES;
+    b.body_fields_at_default = fields_at_default;
     REQUIRE(d.compute(state, props.data(), &b) == 0);
     std::vector<ContactOutput> out(n);
     for (std::size_t k = 0; k < n; ++k) {
@@ -388,5 +390,50 @@ TEST_CASE("contract: a batch of active rows only gives what the same rows give a
                 }
                 if (d.destroy && state) d.destroy(state);
             }
+    }
+}
+
+// ABI 7: the host may say that read fields hold their declared default at
+// every body (body_fields_at_default), and a model may then skip reading
+// them (sph: the wall velocity corrections). A true claim must change no
+// bit: every field at its default, and only the fields after the first two
+// at theirs (the first two, sph's density and pressure, varied).
+TEST_CASE("contract: a true claim that read fields hold their defaults changes no bit of the result", "[contract]") {
+    const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    PluginHost host;
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (auto& m : every_model(host)) {
+        const plab_contact_model_desc& d = *m->d;
+        if (d.fields_read_count == 0) continue;
+        for (uint32_t varied : {0u, std::min(2u, d.fields_read_count)}) {
+            std::vector<std::vector<double>> fields;
+            uint64_t claim = 0;
+            for (uint32_t f = 0; f < d.fields_read_count; ++f) {
+                fields.emplace_back(64, d.fields_read[f].default_value);
+                if (f < varied)
+                    for (double& x : fields.back()) x = (f == 0 ? 1000 : 1e4) * (1 + 0.3 * u(rng));
+                else
+                    claim |= uint64_t(1) << f;
+            }
+            for (int dim : {2, 3}) {
+                std::vector<ContactInput> rows;
+                for (int k = 0; k < 200; ++k) {
+                    ContactInput c = typical(d, m->props, dim, rng);
+                    c.rel_velocity *= std::pow(10.0, 2 * u(rng));
+                    c.body1 = int32_t(rng() % 64);
+                    c.body2 = int32_t(rng() % 64);
+                    rows.push_back(c);
+                }
+                const auto plain = compute(d, m->state, m->props, dim, 1e-4, rows, &fields);
+                const auto claimed = compute(d, m->state, m->props, dim, 1e-4, rows, &fields, claim);
+                for (std::size_t k = 0; k < rows.size(); ++k) {
+                    INFO("model " << d.name << ", dim " << dim << ", varied " << varied << ", row " << k);
+                    for (int c = 0; c < 3; ++c) CHECK(same_bits(plain[k].force[c], claimed[k].force[c]));
+                    CHECK(same_bits(plain[k].dt_limit, claimed[k].dt_limit));
+                    CHECK(plain[k].history == claimed[k].history);
+                }
+            }
+        }
     }
 }

@@ -118,11 +118,16 @@ TEST_CASE("the coordination-number pass counts the contacts of each ball", "[det
     CHECK(*std::max_element(expected.begin(), expected.end()) == 6);
 }
 
-TEST_CASE("a contact model reads body fields and accumulates into them through its batch", "[detection][fields]") {
+// A settled pile whose contacts follow field_probe (tests/plugins).
+json field_probe_pile() {
     json scene = pile(2);
     scene["plugins"].push_back(std::string(PLAB_TEST_PLUGIN_DIR) + "/field_probe.so");
     scene["contact_models"] = {{{"groups", {"*", "*"}}, {"model", "field_probe"}, {"properties", {{"k", 1e5}}}}};
-    Simulation sim(scene);
+    return scene;
+}
+
+TEST_CASE("a contact model reads body fields and accumulates into them through its batch", "[detection][fields]") {
+    Simulation sim(field_probe_pile());
     sim.set_quiet(true);
     World& w = sim.world();
     sim.cycle(2000);
@@ -148,4 +153,37 @@ TEST_CASE("a contact model reads body fields and accumulates into them through i
         else CHECK(w.field(sum)[i] == expected[i]);
     }
     CHECK(std::count_if(expected.begin(), expected.end(), [](double x) { return x > 0; }) > 10);
+}
+
+// ABI 7: body_fields_at_default lets a model skip gathering a field that
+// holds its default everywhere (SPH's wall velocity corrections without a
+// wall pass); a claim must be true, and must go the moment a value leaves it.
+TEST_CASE("the batch says which read fields hold their default, and says it no longer once a value leaves it",
+          "[detection][fields]") {
+    Simulation sim(field_probe_pile());
+    sim.set_quiet(true);
+    World& w = sim.world();
+    sim.cycle(2000);
+    const int value = w.field_index("probe_value"), claims = w.field_index("probe_claims");
+    REQUIRE(claims >= 0);
+    const auto claimed = [&] {
+        double sum = 0;
+        for (double c : w.field(claims)) sum += c;
+        return sum;
+    };
+    const auto touching = [&] {
+        std::size_t n = 0;
+        for (const ContactSet* s : {&w.instances()[0]->balls, &w.instances()[0]->walls})
+            for (std::size_t k = 0; k < s->size(); ++k) n += s->active[k] != 0;
+        return double(n);
+    };
+    sim.cycle(1);  // nothing writes probe_value and it is 2.0 (its default) everywhere: claimed on every contact
+    REQUIRE(touching() > 10);
+    CHECK(claimed() == touching());
+    w.field(value)[3] = 2.5;  // one value set from outside: no claim from the next force pass on
+    sim.cycle(1);
+    CHECK(claimed() == 0.0);
+    w.field(value)[3] = 2.0;  // back at the default everywhere: claimed again
+    sim.cycle(1);
+    CHECK(claimed() == touching());
 }

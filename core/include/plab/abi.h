@@ -42,6 +42,11 @@
  *      distance of each listed contact when the host has it at the current
  *      positions (the range test just computed it), else NULL; a pass that
  *      reads it computes the distance from the positions when it is NULL.
+ *   7  plab_contact_batch gains `body_fields_at_default`, appended: which
+ *      of the fields a model reads hold their declared default at every
+ *      body, so that a model may skip gathering them (SPH: the no-slip
+ *      wall velocity corrections in a scene without sph_wall_pressure).
+ *      A checkpoint records the host ABI and is refused by another.
  *
  * Contact models are called once per *batch* of contacts over host-owned
  * structure-of-arrays data (plab_contact_batch). A batch may hold only
@@ -67,7 +72,7 @@
 extern "C" {
 #endif
 
-#define PLAB_ABI_VERSION 6u
+#define PLAB_ABI_VERSION 7u
 #define PLAB_ABI_OLDEST 1u /* oldest plug-in ABI this host still loads */
 
 /* ---- descriptions ------------------------------------------------------ */
@@ -170,6 +175,12 @@ typedef struct plab_contact_batch {
     double* const* accumulate2;
     double* break_energy;    /* elastic energy a bond released by breaking this step, J */
     uint32_t stage;          /* PLAB_STAGE_FORCES, or PLAB_STAGE_RATES for a model with rates_stage */
+    /* since ABI 7: bit f (f < 64) set: body_fields[f] holds the default
+     * the model declared for it at every body, in this call (the host
+     * checked: nothing in the scene writes the field, and its values are
+     * the default). A model may then take the default instead of reading
+     * the column; 0 claims nothing. */
+    uint64_t body_fields_at_default;
 } plab_contact_batch;
 
 /* Stages of the force-displacement phase. A model with `rates_stage` is

@@ -90,6 +90,9 @@ public:
     double field2(int f) const {
         return b_.end2_is_wall ? std::numeric_limits<double>::quiet_NaN() : b_.body_fields[f][b_.end2[k_]];
     }
+    // true: field f holds its declared default at every body in this batch
+    // (abi.h, ABI 7), so a law may take the default without reading it
+    bool field_at_default(int f) const { return f < 64 && ((b_.body_fields_at_default >> f) & 1u); }
     void accumulate1(int f, double v) const { b_.accumulate1[f][k_] += v; }
     void accumulate2(int f, double v) const { b_.accumulate2[f][k_] += v; }
 

@@ -204,7 +204,7 @@ double World::contact_gap(const ContactSet& s, std::size_t k) const {
     return surface_gap(dist, bodies.radius[s.end1[k]], bodies.radius[s.end2[k]]);
 }
 
-int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols) {
+int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const ReadFields& fields) {
     if (d.count == 0) return 0;
     plab_contact_batch batch{};
     batch.dim = uint32_t(dim);
@@ -214,7 +214,8 @@ int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double d
     batch.dt = dt;
     bind_rows(batch, d, 0, d.history.data());
     batch.distance = d.distances;  // (where the packer left them)
-    batch.body_fields = read_cols;
+    batch.body_fields = fields.cols;
+    batch.body_fields_at_default = fields.at_default;
     // models that accumulate fields take the full-column path, except in
     // the force stage of a rates-stage model, whose sums are not kept
     const bool discard = !inst.fields_accumulated.empty();

@@ -253,7 +253,7 @@ void bind_rows(plab_contact_batch& b, Columns& c, std::size_t o, double* history
 }
 
 // Calls the model once on the packed rows; returns its status.
-int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const double* const* read_cols);
+int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const ReadFields& fields);
 
 // The loop over a batch's rows in range that both packers share (d.rows and
 // d.distances, as the range test listed them): each row's ends, radii and

@@ -170,7 +170,7 @@ void clear_outputs(ContactSet& s, std::size_t o, std::size_t m) {
 // that the force stage must not see); otherwise geometry_rows() zeroed those
 // of the active rows, which are the only ones a model writes.
 int World::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::size_t m, std::uint32_t stage,
-                      const double* const* read_cols, bool clear) {
+                      const ReadFields& fields, bool clear) {
     if (clear) clear_outputs(s, o, m);  // here rather than up front: the rows stay in cache for the model
     // pointers into the accumulation columns, on the stack: no allocation in the cycle
     constexpr std::size_t kMaxAccumulated = 16;
@@ -188,7 +188,8 @@ int World::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::si
     batch.history_stride = uint32_t(inst.stride);
     batch.dt = last_dt;
     bind_rows(batch, s, o, s.history.data() + o * inst.stride);
-    batch.body_fields = read_cols;
+    batch.body_fields = fields.cols;
+    batch.body_fields_at_default = fields.at_default;
     batch.accumulate1 = a1;
     batch.accumulate2 = a2;
     batch.stage = stage;
@@ -198,15 +199,14 @@ int World::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::si
 void World::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
     const std::size_t n = s.size();
     if (n == 0) return;
-    std::vector<const double*> read_cols;
-    for (int f : inst.fields_read) read_cols.push_back(fields_[f].data());
+    const ReadFields fields = read_fields(inst);
     const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
     s.forces_zero = false;  // (any stage may write the outputs)
     int failed = 0;
 #pragma omp parallel for schedule(static) reduction(| : failed) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::size_t o = b * kContactBatch, m = std::min(kContactBatch, n - o);
-        if (call_model(inst, s, o, m, stage, read_cols.data(), true) != 0) failed = 1;
+        if (call_model(inst, s, o, m, stage, fields, true) != 0) failed = 1;
     }
     if (failed) model_failed(inst);
     if (inst.desc->persist_slot >= 0) record_breaks(inst, s);
@@ -276,9 +276,7 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     const std::size_t n = s.size();
     s.batch_energy.assign(kBatchEnergies * ((n + kContactBatch - 1) / kContactBatch), 0.0);
     if (n == 0) return;
-    const double* read_cols[16];
-    if (inst.fields_read.size() > 16) throw PluginError("contact model '" + inst.model + "' reads more than 16 body fields");
-    for (std::size_t f = 0; f < inst.fields_read.size(); ++f) read_cols[f] = fields_[inst.fields_read[f]].data();
+    const ReadFields fields = read_fields(inst);
     // ball–ball rows go to the model packed (dense_batch.hpp), unless it
     // accumulates body fields in this stage (those sums walk the full
     // columns, reduce()); a rates-stage model's force-stage sums are not kept
@@ -306,19 +304,19 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
             if (dense && at_centres) {  // SPH: no spin, moments, stiffness or energies
                 DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
                 exceeded |= pack_centre_rows(inst, si, o, o + m, d);
-                if (call_model_dense(inst, d, dim, last_dt, read_cols) != 0) failed = 1;
+                if (call_model_dense(inst, d, dim, last_dt, fields) != 0) failed = 1;
                 unpack_centre_rows(si, inst, d, o, ch);
                 continue;
             }
             if (dense) {
                 DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
                 exceeded |= pack_ball_rows(inst, si, o, o + m, d);
-                if (call_model_dense(inst, d, dim, last_dt, read_cols) != 0) failed = 1;
+                if (call_model_dense(inst, d, dim, last_dt, fields) != 0) failed = 1;
                 unpack_rows(si, inst, d, o, ch);
                 continue;
             }
             if (with_geometry) exceeded |= geometry_rows(inst, s, o, o + m);
-            if (call_model(inst, s, o, m, PLAB_STAGE_FORCES, read_cols, false) != 0) failed = 1;
+            if (call_model(inst, s, o, m, PLAB_STAGE_FORCES, fields, false) != 0) failed = 1;
             scatter_rows(si, o, o + m, ch);
         }
     }
@@ -630,6 +628,40 @@ bool World::field_computed(int f) const {
         filled_by_rates |= std::find(acc.begin(), acc.end(), f) != acc.end();
     }
     return !(skipped && filled_by_rates);
+}
+
+// Which fields hold their default at every body in this force pass: the
+// ones a model reads that no pass declares and no model accumulates
+// (nothing in the cycle writes them) and whose values are the default now.
+// A scan each force pass, not a flag kept: a value set from outside
+// (World::field(), a checkpoint) counts at once.
+void World::find_fields_at_default() {
+    field_at_default_.assign(fields_.size(), 0);
+    std::vector<std::uint8_t> candidate(fields_.size(), 0);
+    for (const auto& inst : instances_)
+        for (int f : inst->fields_read) candidate[f] = 1;
+    for (const auto& inst : instances_)
+        for (int f : inst->fields_accumulated) candidate[f] = 0;
+    for (const PassInstance& p : passes_)
+        for (int f : p.fields) candidate[f] = 0;
+    for (std::size_t f = 0; f < fields_.size(); ++f) {
+        if (!candidate[f]) continue;
+        const double d = field_defaults_[f];
+        field_at_default_[f] = std::all_of(fields_[f].begin(), fields_[f].end(), [d](double v) { return v == d; });
+    }
+}
+
+ReadFields World::read_fields(const ModelInstance& inst) const {
+    ReadFields r;
+    for (std::size_t f = 0; f < inst.fields_read.size(); ++f) {
+        const int idx = inst.fields_read[f];
+        r.cols[f] = fields_[idx].data();
+        // (the field's default is its first registrant's: it must be this model's too)
+        const bool at_default = std::size_t(idx) < field_at_default_.size() && field_at_default_[idx] &&
+                                field_defaults_[idx] == inst.desc->fields_read[f].default_value;
+        if (f < 64 && at_default) r.at_default |= std::uint64_t(1) << f;
+    }
+    return r;
 }
 
 bool World::rates_stage_needed(const ModelInstance& inst) const {

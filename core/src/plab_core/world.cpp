@@ -83,6 +83,9 @@ int World::add_instance(const std::string& model, std::vector<double> props) {
     // overlap means something for mechanical contacts only (SPH pairs are
     // "in contact" at a distance)
     inst->max_overlap = d->range_kind == PLAB_RANGE_GAP ? 1.0 : kInf;
+    if (d->fields_read_count > ReadFields::kMax)
+        throw PluginError("contact model '" + model + "' reads " + std::to_string(d->fields_read_count) +
+                          " body fields; plab passes at most " + std::to_string(ReadFields::kMax));
     for (uint32_t f = 0; f < d->fields_read_count; ++f)
         inst->fields_read.push_back(register_field(d->fields_read[f].name, d->fields_read[f].default_value));
     for (uint32_t f = 0; f < d->fields_accumulated_count; ++f)
@@ -367,6 +370,7 @@ void World::force_pass(double closing_kick) {
     }
     {
         PhaseTimer t{phase_seconds[ph_force]};
+        find_fields_at_default();
         clear_batch_limits();  // force_sweep() keeps those of centre-force sets, the columns the others'
         // a pass added since the last rebuild may need a rates stage over
         // full columns that a packed set lacks (packs_balls)

@@ -115,6 +115,15 @@ struct ModelInstance {
     bool uses(std::uint32_t bit) const { return !(desc->io & PLAB_IO_DECLARED) || (desc->io & bit); }
 };
 
+// The body fields a model reads, as its batches take them (abi.h): the
+// columns in its `fields_read` order, and which of them hold their
+// default at every body (plab_contact_batch::body_fields_at_default).
+struct ReadFields {
+    static constexpr std::size_t kMax = 16;  // (World::add_model refuses more)
+    const double* cols[kMax] = {};
+    std::uint64_t at_default = 0;
+};
+
 struct PassInstance {
     const plab_pass_desc* desc = nullptr;
     std::vector<double> props;
@@ -301,6 +310,7 @@ private:
     std::vector<std::string> field_names_;
     std::vector<std::vector<double>> fields_;
     std::vector<double> field_defaults_;
+    std::vector<std::uint8_t> field_at_default_;  // per field, this force pass (find_fields_at_default)
 
     // detection state
     bool need_rebuild_ = true;
@@ -515,7 +525,9 @@ private:
     static void hold_value(double* column, std::size_t width, double value, std::size_t begin, std::size_t end,
                            HeldOutputs& held, int which);
     int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
-                   const double* const* read_cols, bool clear);
+                   const ReadFields& fields, bool clear);
+    void find_fields_at_default();
+    ReadFields read_fields(const ModelInstance& inst) const;
     [[noreturn]] void model_failed(const ModelInstance& inst) const;
     void resolve_wall_features(ContactSet& set);
     void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
