@@ -513,6 +513,7 @@ bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
     // an overflow of finite values too is caught, check_finite() tells):
     // an OR, not a running sum, so that no body waits for the previous one
     bool non_finite = false;
+    const bool plane = dim == 2;
     for (std::size_t i = i0; i < i1; ++i) {
         if (any_accumulation_)  // fields of rates-stage models are summed after that stage
             for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
@@ -523,8 +524,13 @@ bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
                 if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
             }
         if (local_damping[i] > 0 || viscous_damping[i] > 0) damp_body(i, force[i], moment[i], local_work);
-        if (dim == 2) { force[i].z() = 0; moment[i].x() = 0; moment[i].y() = 0; }
-        non_finite |= !(std::fabs(force[i].sum() + moment[i].sum() + position[i].sum() + velocity[i].sum()) < kInf);
+        if (plane) {  // (z, vz of a 2D world are zero: Bodies::add, the kicks)
+            force[i].z() = 0; moment[i].x() = 0; moment[i].y() = 0;
+            non_finite |= !(std::fabs(force[i].x() + force[i].y() + moment[i].z() + position[i].x() + position[i].y() +
+                                      velocity[i].x() + velocity[i].y()) < kInf);
+        } else {
+            non_finite |= !(std::fabs(force[i].sum() + moment[i].sum() + position[i].sum() + velocity[i].sum()) < kInf);
+        }
     }
     return !non_finite;  // check_finite() finds which body
 }
