@@ -29,6 +29,7 @@ struct RangeRows {
     const Vec* x;
     double* gap_col;  // null: the set keeps no gaps (packed)
     std::uint8_t *active_col, *live;
+    bool plane;  // a 2D world: every z is zero, so is its square
 };
 // In two loops: the geometry and flags of every row first, then the lists.
 // In one loop the list stores waited for their addresses, the counts, which
@@ -45,10 +46,18 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
     // squared distances first, then their square roots in a loop of their
     // own: there they are taken a vector at a time (one vsqrtpd for 8 rows
     // on AVX-512), not one row at a time behind each row's gathers
-    for (std::size_t r = 0; r < n; ++r) {
-        const std::size_t k = begin + r;
-        dist_of[r] = (c.x[c.end2[k]] - c.x[c.end1[k]]).squaredNorm();
-    }
+    if (c.plane)  // (the same bits: the square of z adds zero)
+        for (std::size_t r = 0; r < n; ++r) {
+            const std::size_t k = begin + r;
+            const Vec &a = c.x[c.end1[k]], &b = c.x[c.end2[k]];
+            const double dx = b.x() - a.x(), dy = b.y() - a.y();
+            dist_of[r] = dx * dx + dy * dy;
+        }
+    else
+        for (std::size_t r = 0; r < n; ++r) {
+            const std::size_t k = begin + r;
+            dist_of[r] = (c.x[c.end2[k]] - c.x[c.end1[k]]).squaredNorm();
+        }
     for (std::size_t r = 0; r < n; ++r) dist_of[r] = std::sqrt(dist_of[r]);
     for (std::size_t r = 0; r < n; ++r) {
         const std::size_t k = begin + r;
@@ -58,19 +67,24 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
         if (c.gap_col) c.gap_col[k] = g;  // (the centre distance of a ball–ball row is read by the model only)
         in[r] = active;
     }
-    std::size_t n_active = 0;
-    for (std::size_t r = 0; r < n; ++r) {  // no branch per row: in-range flags follow no pattern
-        const std::size_t k = begin + r;
-        const bool active = in[r] != 0;
-        c.active_col[k] = active;
-        distance[n_active] = dist_of[r];
-        row[n_active] = std::uint32_t(k);
-        n_active += active;
-        if (Forget) {
-            idle[n_idle] = std::uint32_t(k);
-            n_idle += !active & (c.live[k] != 0);  // just left the range: history to forget
-            c.live[k] = active;
+    // The flags in loops of their own (whole vectors of bytes), then the
+    // lists: each a loop that only stores and counts, no branch per row
+    // (in-range flags follow no pattern).
+    std::copy_n(in, n, c.active_col + begin);
+    if (Forget) {
+        std::uint8_t left[kContactBatch];  // just left the range: history to forget
+        for (std::size_t r = 0; r < n; ++r) left[r] = !in[r] & (c.live[begin + r] != 0);
+        std::copy_n(in, n, c.live + begin);
+        for (std::size_t r = 0; r < n; ++r) {
+            idle[n_idle] = std::uint32_t(begin + r);
+            n_idle += left[r];
         }
+    }
+    std::size_t n_active = 0;
+    for (std::size_t r = 0; r < n; ++r) {
+        distance[n_active] = dist_of[r];
+        row[n_active] = std::uint32_t(begin + r);
+        n_active += in[r];
     }
     return n_active;
 }
@@ -91,7 +105,8 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
     // raw pointers: the byte stores below (flags) may alias anything, so
     // the compiler would otherwise reload every column's address per row
     const RangeRows c{s.end1.data(), s.end2.data(), bodies.radius.data(), s.history.data(),
-                      bodies.position.data(), s.packed ? nullptr : s.gap.data(), s.active.data(), live_[si].data()};
+                      bodies.position.data(), s.packed ? nullptr : s.gap.data(), s.active.data(), live_[si].data(),
+                      dim == 2};
     std::uint32_t idle[kContactBatch];
     double unused[kContactBatch];  // where an output the caller does not take goes
     if (!distance) distance = unused;
