@@ -642,18 +642,18 @@ bool World::field_computed(int f) const {
 // A scan each force pass, not a flag kept: a value set from outside
 // (World::field(), a checkpoint) counts at once.
 void World::find_fields_at_default() {
-    field_at_default_.assign(fields_.size(), 0);
-    std::vector<std::uint8_t> candidate(fields_.size(), 0);
+    std::vector<std::uint8_t>& at_default = field_at_default_;  // first the candidates (no allocation in the cycle)
+    at_default.assign(fields_.size(), 0);
     for (const auto& inst : instances_)
-        for (int f : inst->fields_read) candidate[f] = 1;
+        for (int f : inst->fields_read) at_default[f] = 1;
     for (const auto& inst : instances_)
-        for (int f : inst->fields_accumulated) candidate[f] = 0;
+        for (int f : inst->fields_accumulated) at_default[f] = 0;
     for (const PassInstance& p : passes_)
-        for (int f : p.fields) candidate[f] = 0;
+        for (int f : p.fields) at_default[f] = 0;
     for (std::size_t f = 0; f < fields_.size(); ++f) {
-        if (!candidate[f]) continue;
+        if (!at_default[f]) continue;
         const double d = field_defaults_[f];
-        field_at_default_[f] = std::all_of(fields_[f].begin(), fields_[f].end(), [d](double v) { return v == d; });
+        at_default[f] = std::all_of(fields_[f].begin(), fields_[f].end(), [d](double v) { return v == d; });
     }
 }
 
