@@ -665,7 +665,7 @@ ReadFields World::read_fields(const ModelInstance& inst) const {
         // (the field's default is its first registrant's: it must be this model's too)
         const bool at_default = std::size_t(idx) < field_at_default_.size() && field_at_default_[idx] &&
                                 field_defaults_[idx] == inst.desc->fields_read[f].default_value;
-        if (f < 64 && at_default) r.at_default |= std::uint64_t(1) << f;
+        if (at_default) r.at_default |= std::uint64_t(1) << f;
     }
     return r;
 }

@@ -645,27 +645,59 @@ struct DriftSums {
     bool out = false;
 };
 
-// The drift of a 2D world's bodies [i0, i1) without a drift correction:
-// their z, vz and the domain's z bounds (infinite) never change, so only x
-// and y are worked out (drift_block()'s general loop spends a third of its
-// arithmetic on those zeros). The positions come out the same bits.
-void drift_plane(Vec* position, const Vec* velocity, const Vec* built, const double* mass, const Vec& lo, const Vec& hi,
-                 const Vec& g, double dt, std::size_t i0, std::size_t i1, DriftSums& sums) {
+// The body columns and constants a drift reads; column addresses in
+// locals: Eigen's vector stores may alias anything.
+struct DriftColumns {
+    Vec* position;
+    const Vec *velocity, *built;
+    const double* mass;
+    const std::uint8_t* fixity;
+    Vec lo, hi, g;  // copies: no reload after each store
+};
+
+// x += (v + correction) dt for bodies [i0, i1), any dimension; the
+// correction (the drift correction fields, null: none) only along free
+// translational DOFs.
+DriftSums drift_rows(const DriftColumns& c, const double* const* correction, double dt, std::size_t i0,
+                     std::size_t i1) {
+    DriftSums sums;
+    for (std::size_t i = i0; i < i1; ++i) {
+        Vec dx = c.velocity[i] * dt;
+        if (correction) {
+            const std::uint8_t fix = c.fixity[i];
+            for (int k = 0; k < 3; ++k)
+                if (!(fix & (dof_x << k))) dx[k] += correction[k][i] * dt;
+        }
+        Vec& x = c.position[i];
+        x += dx;
+        sums.body_work += c.mass[i] * c.g.dot(dx);  // exact for a constant force
+        sums.max2 = std::max(sums.max2, (x - c.built[i]).squaredNorm());
+        // a NaN fails every comparison (& rather than &&: no branch per comparison)
+        sums.out |= !((x.x() >= c.lo.x()) & (x.x() <= c.hi.x()) & (x.y() >= c.lo.y()) & (x.y() <= c.hi.y()) &
+                      (x.z() >= c.lo.z()) & (x.z() <= c.hi.z()) & (std::fabs(x.x() + x.y() + x.z()) < kInf));
+    }
+    return sums;
+}
+
+// drift_rows() for a 2D world without a drift correction: z, vz and the
+// domain's z bounds (infinite) never change, so only x and y are worked out
+// (the general loop spends a third of its arithmetic on those zeros). The
+// positions come out the same bits.
+DriftSums drift_plane_rows(const DriftColumns& c, double dt, std::size_t i0, std::size_t i1) {
     double body_work = 0, max2 = 0;
     bool out = false;
-    const double gx = g.x(), gy = g.y(), lox = lo.x(), loy = lo.y(), hix = hi.x(), hiy = hi.y();
+    const double gx = c.g.x(), gy = c.g.y(), lox = c.lo.x(), loy = c.lo.y(), hix = c.hi.x(), hiy = c.hi.y();
     for (std::size_t i = i0; i < i1; ++i) {
-        const double dx = velocity[i].x() * dt, dy = velocity[i].y() * dt;
-        const double x = position[i].x() + dx, y = position[i].y() + dy;
-        position[i].x() = x;
-        position[i].y() = y;
-        body_work += mass[i] * (gx * dx + gy * dy);  // exact for a constant force
-        const double ex = x - built[i].x(), ey = y - built[i].y();
+        const double dx = c.velocity[i].x() * dt, dy = c.velocity[i].y() * dt;
+        const double x = c.position[i].x() + dx, y = c.position[i].y() + dy;
+        c.position[i].x() = x;
+        c.position[i].y() = y;
+        body_work += c.mass[i] * (gx * dx + gy * dy);
+        const double ex = x - c.built[i].x(), ey = y - c.built[i].y();
         max2 = std::max(max2, ex * ex + ey * ey);
-        // a NaN fails every comparison (& rather than &&: no branch per comparison)
         out |= !((x >= lox) & (x <= hix) & (y >= loy) & (y <= hiy) & (std::fabs(x + y) < kInf));
     }
-    sums = {body_work, max2, out};
+    return {body_work, max2, out};
 }
 } // namespace
 
@@ -674,34 +706,13 @@ void drift_plane(Vec* position, const Vec* velocity, const Vec* built, const dou
 // build (displacement_exceeds_skin()).
 void World::drift_block(std::size_t b, double dt, const DriftCorrection& corr) {
     const std::size_t i0 = b * kBodyBlock, i1 = std::min(bodies.size(), i0 + kBodyBlock);
-    const Vec lo = baseline_.lo, hi = baseline_.hi, g = gravity;  // copies: no reload after each store
     // (no reference positions yet: measured against x itself; finish_drift() knows)
     const bool tracked = position_at_build_.size() == bodies.size();
-    const Vec* built = tracked ? position_at_build_.data() : bodies.position.data();
-    // column addresses in locals: Eigen's vector stores may alias anything
-    Vec* position = bodies.position.data();
-    const Vec* velocity = bodies.velocity.data();
-    const double* mass = bodies.mass.data();
-    const std::uint8_t* fixity = bodies.fixity.data();
-    DriftSums sums;
-    if (dim == 2 && !corr.on) {
-        drift_plane(position, velocity, built, mass, lo, hi, g, dt, i0, i1, sums);
-    } else {
-        for (std::size_t i = i0; i < i1; ++i) {
-            Vec dx = velocity[i] * dt;
-            if (corr.on) {
-                const std::uint8_t fix = fixity[i];
-                for (int k = 0; k < 3; ++k)
-                    if (!(fix & (dof_x << k))) dx[k] += corr.field[k][i] * dt;
-            }
-            Vec& x = position[i];
-            x += dx;
-            sums.body_work += mass[i] * g.dot(dx);  // exact for a constant force
-            sums.max2 = std::max(sums.max2, (x - built[i]).squaredNorm());
-            sums.out |= !((x.x() >= lo.x()) & (x.x() <= hi.x()) & (x.y() >= lo.y()) & (x.y() <= hi.y()) &
-                          (x.z() >= lo.z()) & (x.z() <= hi.z()) & (std::fabs(x.x() + x.y() + x.z()) < kInf));
-        }
-    }
+    const DriftColumns c{bodies.position.data(), bodies.velocity.data(),
+                         tracked ? position_at_build_.data() : bodies.position.data(), bodies.mass.data(),
+                         bodies.fixity.data(), baseline_.lo, baseline_.hi, gravity};
+    const DriftSums sums = dim == 2 && !corr.on ? drift_plane_rows(c, dt, i0, i1)
+                                                : drift_rows(c, corr.on ? corr.field.data() : nullptr, dt, i0, i1);
     block_body_work_[b] = sums.body_work;
     block_max_drift2_[b] = sums.max2;
     block_out_[b] = sums.out;

@@ -119,7 +119,8 @@ struct ModelInstance {
 // columns in its `fields_read` order, and which of them hold their
 // default at every body (plab_contact_batch::body_fields_at_default).
 struct ReadFields {
-    static constexpr std::size_t kMax = 16;  // (World::add_model refuses more)
+    static constexpr std::size_t kMax = 16;  // (World::add_instance refuses more)
+    static_assert(kMax <= 64, "one bit of at_default per field");
     const double* cols[kMax] = {};
     std::uint64_t at_default = 0;
 };
