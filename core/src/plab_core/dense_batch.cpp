@@ -3,6 +3,7 @@
 // ball_geometry_rows(); the sums are those of
 // scatter_rows(), so results are the same bit for bit.
 #include "dense_batch.hpp"
+#include "row_lists.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -68,24 +69,15 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
         in[r] = active;
     }
     // The flags in loops of their own (whole vectors of bytes), then the
-    // lists: each a loop that only stores and counts, no branch per row
-    // (in-range flags follow no pattern).
+    // lists (row_lists.hpp).
     std::copy_n(in, n, c.active_col + begin);
     if (Forget) {
         std::uint8_t left[kContactBatch];  // just left the range: history to forget
         for (std::size_t r = 0; r < n; ++r) left[r] = !in[r] & (c.live[begin + r] != 0);
         std::copy_n(in, n, c.live + begin);
-        for (std::size_t r = 0; r < n; ++r) {
-            idle[n_idle] = std::uint32_t(begin + r);
-            n_idle += left[r];
-        }
+        n_idle += list_flagged_rows(left, n, std::uint32_t(begin), idle + n_idle);
     }
-    std::size_t n_active = 0;
-    for (std::size_t r = 0; r < n; ++r) {
-        distance[n_active] = dist_of[r];
-        row[n_active] = std::uint32_t(begin + r);
-        n_active += in[r];
-    }
+    const std::size_t n_active = list_flagged_rows(in, n, std::uint32_t(begin), row, dist_of, distance);
     return n_active;
 }
 } // namespace
