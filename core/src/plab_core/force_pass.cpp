@@ -5,6 +5,7 @@
 
 #include "dense_batch.hpp"
 #include "error.hpp"
+#include "row_lists.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -45,42 +46,68 @@ inline void clear_row_outputs(ContactSet& s, std::size_t k) {
 // its model's max_overlap (the stability detector's check, done here while
 // the gap is at hand).
 bool World::geometry_rows(const ModelInstance& inst, ContactSet& s, std::size_t begin, std::size_t end) {
-    if (!s.with_wall) return ball_geometry_rows(inst, s, begin, end);
+    return s.with_wall ? wall_geometry_rows(inst, s, begin, end) : ball_geometry_rows(inst, s, begin, end);
+}
+
+namespace {
+// A ball's distance from a wall facet (signed for a plane: a ball behind
+// it is pushed back) and the contact normal, from the ball into the wall.
+inline double facet_distance(const Facet& f, const Vec& xi, Vec& normal, std::uint8_t& interior) {
+    if (f.kind == FacetKind::plane) {
+        normal = -f.b;
+        interior = 1;
+        return (xi - f.a).dot(f.b);
+    }
+    const ClosestPoint cp = closest_point(f, xi);
+    const Vec d = cp.point - xi;
+    const double dist = d.norm();
+    normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
+    interior = cp.interior;
+    return dist;
+}
+} // namespace
+
+// Ball–wall rows as ball_geometry_rows() does ball–ball ones: the range
+// test of every row first, then the geometry of the active rows, listed
+// without a branch per row (a third of a settled pile's wall candidates
+// are out of range, in no pattern).
+bool World::wall_geometry_rows(const ModelInstance& inst, ContactSet& s, std::size_t begin, std::size_t end) {
     const auto& B = bodies;
+    const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
+    const int persist = inst.desc->persist_slot;
+    std::uint32_t rows[kContactBatch];
     bool exceeded = false;
-    for (std::size_t k = begin; k < end; ++k) {
-        const std::int32_t i = s.end1[k];
-        const Vec& xi = B.position[i];
-        const double ri = B.radius[i];
-        const Facet& f = walls.facets[s.end2[k]];
-        Vec normal;
-        double dist;
-        if (f.kind == FacetKind::plane) {
-            dist = (xi - f.a).dot(f.b);  // signed: a ball behind the plane is pushed back
-            normal = -f.b;
-            s.interior[k] = 1;
-        } else {
-            const ClosestPoint cp = closest_point(f, xi);
-            const Vec d = cp.point - xi;
-            dist = d.norm();
-            normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
-            s.interior[k] = cp.interior;
+    for (std::size_t k0 = begin; k0 < end; k0 += kContactBatch) {
+        const std::size_t k1 = std::min(end, k0 + kContactBatch);
+        for (std::size_t k = k0; k < k1; ++k) {
+            Vec normal;
+            const double dist = facet_distance(walls.facets[s.end2[k]], B.position[s.end1[k]], normal, s.interior[k]);
+            const double gap = dist - B.radius[s.end1[k]];
+            s.gap[k] = gap;
+            s.distance[k] = dist;
+            bool active = by_distance ? dist <= inst.range : gap <= inst.range;
+            if (persist >= 0) active |= s.history[k * inst.stride + std::size_t(persist)] > 0;  // a bond holds at any gap
+            s.active[k] = active;
         }
-        const Vec point = xi + normal * (ri + 0.5 * (dist - ri));
-        const double gap = dist - ri;
-        s.gap[k] = gap;
-        s.distance[k] = dist;
-        s.active[k] = inst.desc->range_kind == PLAB_RANGE_DISTANCE ? dist <= inst.range : gap <= inst.range;
-        if (inst.desc->persist_slot >= 0 && s.history[k * inst.stride + inst.desc->persist_slot] > 0)
-            s.active[k] = 1;  // a bond holds at any gap
-        if (!s.active[k]) continue;
-        const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
-        put(s.normal, k, normal);
-        put(s.point, k, point);
-        put(s.rel_velocity, k, walls.velocity_at(f.wall, point) - vi);
-        put(s.rel_angular_velocity, k, walls.walls[f.wall].angular_velocity - B.angular_velocity[i]);
-        clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, install_pairs)
-        exceeded |= -gap > inst.max_overlap * ri;
+        const std::size_t n_active = list_flagged_rows(s.active.data() + k0, k1 - k0, std::uint32_t(k0), rows);
+        for (std::size_t a = 0; a < n_active; ++a) {
+            const std::size_t k = rows[a];
+            const std::int32_t i = s.end1[k];
+            const Vec& xi = B.position[i];
+            const double ri = B.radius[i], dist = s.distance[k], gap = s.gap[k];
+            const Facet& f = walls.facets[s.end2[k]];
+            Vec normal;
+            std::uint8_t interior;
+            facet_distance(f, xi, normal, interior);  // (the normal again: the same bits)
+            const Vec point = xi + normal * (ri + 0.5 * (dist - ri));
+            const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
+            put(s.normal, k, normal);
+            put(s.point, k, point);
+            put(s.rel_velocity, k, walls.velocity_at(f.wall, point) - vi);
+            put(s.rel_angular_velocity, k, walls.walls[f.wall].angular_velocity - B.angular_velocity[i]);
+            clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, install_pairs)
+            exceeded |= -gap > inst.max_overlap * ri;
+        }
     }
     return exceeded;
 }
@@ -97,18 +124,15 @@ bool World::ball_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
     bool exceeded = false;
     for (std::size_t k0 = begin; k0 < end; k0 += kContactBatch) {
         const std::size_t k1 = std::min(end, k0 + kContactBatch);
-        std::size_t n_active = 0;
         for (std::size_t k = k0; k < k1; ++k) {
             const std::int32_t i = s.end1[k], j = s.end2[k];
             const double dist = (B.position[j] - B.position[i]).norm();
             const double gap = dist - s.radius1[k] - s.radius2[k];
-            const bool active = in_range(s.history, k, dist, gap);
             s.gap[k] = gap;
             s.distance[k] = dist;
-            s.active[k] = active;
-            rows[n_active] = std::uint32_t(k);
-            n_active += active;
+            s.active[k] = in_range(s.history, k, dist, gap);
         }
+        const std::size_t n_active = list_flagged_rows(s.active.data() + k0, k1 - k0, std::uint32_t(k0), rows);
         for (std::size_t a = 0; a < n_active; ++a) {
             const std::size_t k = rows[a];
             const double ri = s.radius1[k], rj = s.radius2[k], gap = s.gap[k];
@@ -296,8 +320,8 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
 #pragma omp parallel for schedule(static) reduction(| : failed, exceeded) if (n >= parallel_min)
     for (std::uint32_t c = c0; c < c1; ++c) {
         Chunk& ch = chunks_[c];
+        clear_chunk(ch);
         ch.forces_only = dense && at_centres;
-        std::fill_n(partial_fm_.data() + ch.offset, slot_width(ch.forces_only) * ch.slots, 0.0);
         if (still) continue;
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
             const std::size_t m = std::min(kContactBatch, ch.end - o);
@@ -365,11 +389,7 @@ void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, c
     double strain = 0, slip = 0, dashpot = 0, broken = 0, wall_power = 0;
     // the active rows, listed without a branch per row
     std::uint32_t rows[kContactBatch];
-    std::size_t n_active = 0;
-    for (std::size_t k = begin; k < end; ++k) {
-        rows[n_active] = std::uint32_t(k);
-        n_active += s.active[k] != 0;
-    }
+    const std::size_t n_active = list_flagged_rows(s.active.data() + begin, end - begin, std::uint32_t(begin), rows);
     for (std::size_t a = 0; a < n_active; ++a) {
         const std::size_t k = rows[a];
         double* f1m1 = fm + width * (listed ? std::size_t(listed[k]) : std::size_t(s.end1[k] - lo));
@@ -398,8 +418,8 @@ void World::scatter_to_chunks(std::uint32_t si) {
 #pragma omp parallel for schedule(static) if (n >= parallel_min)
     for (std::uint32_t c = set_chunks_[si]; c < set_chunks_[si + 1]; ++c) {
         Chunk& ch = chunks_[c];
+        clear_chunk(ch);
         ch.forces_only = false;
-        std::fill_n(partial_fm_.data() + ch.offset, slot_width(false) * ch.slots, 0.0);
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch)
             scatter_rows(si, o, std::min(ch.end, o + kContactBatch), ch);
     }
@@ -464,8 +484,29 @@ void World::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
     }
 }
 
+namespace {
+template <int D> using Int = std::integral_constant<int, D>;
+
+// A chunk's slot added to a body's force f and moment m (the layout of
+// World::add_to_slot(), slot_width()), then cleared for the next sweep.
+template <int Dim, bool ForcesOnly>
+inline void take_slot(Vec& f, Vec& m, double* slot) {
+    constexpr int width = Dim == 2 ? (ForcesOnly ? 2 : 3) : (ForcesOnly ? 3 : 6);
+    if (Dim == 3) {
+        f += Vec(slot);
+        if (!ForcesOnly) m += Vec(slot + 3);
+    } else {
+        f.x() += slot[0];
+        f.y() += slot[1];
+        if (!ForcesOnly) m.z() += slot[2];
+    }
+    for (int c = 0; c < width; ++c) slot[c] = 0.0;
+}
+} // namespace
+
 // Bodies [i0, i1): gravity and applied loads, then the chunks' partial
-// sums in chunk order (the same order for any thread count).
+// sums in chunk order (the same order for any thread count), each slot
+// cleared as it is taken (Chunk::zeroed).
 void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
     // column addresses in locals: Eigen's vector stores may alias anything
     Vec* force = bodies.force.data();
@@ -484,20 +525,33 @@ void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
             moment[i] = Vec::Zero();
         }
     }
-    for (const Chunk& ch : chunks_) {
-        const double* p = partial_fm_.data() + ch.offset;
-        const std::size_t width = slot_width(ch.forces_only);
-        const auto add_slot = [&](std::size_t i, const double* s) { add_from_slot(force[i], moment[i], s, ch.forces_only); };
+    const auto take = [&](const Chunk& ch, auto d, auto forces_only) {
+        constexpr int Dim = decltype(d)::value;
+        constexpr bool F = decltype(forces_only)::value;
+        double* p = partial_fm_.data() + ch.offset;
+        constexpr std::size_t width = Dim == 2 ? (F ? 2 : 3) : (F ? 3 : 6);  // slot_width()
         if (ch.listed) {  // its balls in [i0, i1), ascending
             const std::int32_t* first = chunk_bodies_.data() + ch.first_listed;
             const std::int32_t* q0 = std::lower_bound(first, first + ch.slots, std::int32_t(i0));
             const std::int32_t* q1 = std::lower_bound(q0, first + ch.slots, std::int32_t(i1));
-            for (const std::int32_t* q = q0; q < q1; ++q) add_slot(std::size_t(*q), p + width * std::size_t(q - first));
-            continue;
+            for (const std::int32_t* q = q0; q < q1; ++q)
+                take_slot<Dim, F>(force[*q], moment[*q], p + width * std::size_t(q - first));
+            return;
         }
         const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
-        for (std::size_t i = c0; i < c1; ++i) add_slot(i, p + width * (i - std::size_t(ch.lo)));
+        for (std::size_t i = c0; i < c1; ++i) take_slot<Dim, F>(force[i], moment[i], p + width * (i - std::size_t(ch.lo)));
+    };
+    for (const Chunk& ch : chunks_) {
+        if (dim == 3) ch.forces_only ? take(ch, Int<3>{}, std::true_type{}) : take(ch, Int<3>{}, std::false_type{});
+        else ch.forces_only ? take(ch, Int<2>{}, std::true_type{}) : take(ch, Int<2>{}, std::false_type{});
     }
+}
+
+// Before a sweep adds into chunk ch: its slots to zero, unless
+// add_chunk_sums() left them so.
+void World::clear_chunk(Chunk& ch) {
+    if (!ch.zeroed) std::fill_n(partial_fm_.data() + ch.offset, slot_width(ch.forces_only) * ch.slots, 0.0);
+    ch.zeroed = false;
 }
 
 // Bodies [i0, i1) after their contact sums: field accumulations, damping
@@ -558,6 +612,7 @@ bool World::reduce(double closing_kick) {
         // the step's closing half kick while the block is in cache (advance())
         if (closing_kick > 0) kick_block_of_bodies(b, closing_kick, true);
     }
+    for (Chunk& ch : chunks_) ch.zeroed = true;  // (add_chunk_sums() cleared every slot it took)
     double local_work = 0;
     for (double w : block_local_work_) local_work += w;
     energies.local_damping += local_work;

@@ -343,18 +343,6 @@ private:
         if (dim == 2) add_to_slot_2d(slot, f[0], f[1], m[2]);
         else add_to_slot_3d(slot, f, m);
     }
-    // A slot's sums added to a body's force f and moment m (the reader of
-    // the layout add_to_slot() and the centre-force path write).
-    void add_from_slot(Vec& f, Vec& m, const double* slot, bool forces_only) const {
-        if (dim == 3) {
-            f += Vec(slot);
-            if (!forces_only) m += Vec(slot + 3);
-            return;
-        }
-        f.x() += slot[0];
-        f.y() += slot[1];
-        if (!forces_only) m.z() += slot[2];
-    }
     struct Chunk {
         std::uint32_t set;
         std::size_t begin, end;  // rows
@@ -368,6 +356,10 @@ private:
         // the last sweep added forces alone (the centre-force path, which
         // has no moments): its slots are slot_width(true) doubles wide
         bool forces_only = false;
+        // every slot holds zero: add_chunk_sums() clears what it takes
+        // (its lines are then in cache, a separate fill would load them
+        // again), so the next sweep need not clear the chunk
+        bool zeroed = true;
         bool listed = false;
         std::size_t first_listed = 0;
     };
@@ -510,6 +502,7 @@ private:
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
+    bool wall_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     std::size_t range_test_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin,
                                 std::size_t end, std::uint32_t* row, double* distance);
     bool pack_ball_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end,
@@ -554,6 +547,7 @@ private:
     void force_pass(double closing_kick = 0);
     void damp_body(std::size_t body, Vec& force, Vec& moment, double& local_work) const;
     void add_chunk_sums(std::size_t first_body, std::size_t end_body);
+    void clear_chunk(Chunk& ch);
     bool finish_bodies(std::size_t first_body, std::size_t end_body, double& local_work);
     bool reduce(double closing_kick);  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
