@@ -187,3 +187,34 @@ TEST_CASE("the batch says which read fields hold their default, and says it no l
     sim.cycle(1);
     CHECK(claimed() == touching());
 }
+
+#include "plab_core/row_lists.hpp"
+#include <random>
+
+// The lists of flagged rows (the range test's in-range and just-left lists,
+// the active rows of scatter and geometry): every length around the vector
+// width, flags at random, rows and values in order; nothing written past n.
+TEST_CASE("the list of flagged rows holds exactly the flagged rows in order, with their values", "[detection]") {
+    std::mt19937 rng(7);
+    for (std::size_t n : {0u, 1u, 15u, 16u, 17u, 31u, 32u, 33u, 255u, 256u}) {
+        for (double p : {0.0, 0.3, 0.7, 1.0}) {
+            std::bernoulli_distribution on(p);
+            std::vector<std::uint8_t> flag(n);
+            std::vector<double> value(n);
+            for (std::size_t r = 0; r < n; ++r) { flag[r] = on(rng); value[r] = 0.5 * double(r) - 3.0; }
+            std::vector<std::uint32_t> out(n + 1, 0xdeadbeef);
+            std::vector<double> value_out(n + 1, -1.0);
+            const std::size_t count = list_flagged_rows(flag.data(), n, 1000, out.data(), value.data(), value_out.data());
+            std::size_t expected = 0;
+            for (std::size_t r = 0; r < n; ++r) {
+                if (!flag[r]) continue;
+                REQUIRE(out[expected] == 1000 + r);
+                REQUIRE(value_out[expected] == value[r]);
+                ++expected;
+            }
+            REQUIRE(count == expected);
+            CHECK(out[n] == 0xdeadbeef);  // the guard past n is untouched
+            CHECK(value_out[n] == -1.0);
+        }
+    }
+}
