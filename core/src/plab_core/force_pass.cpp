@@ -559,17 +559,8 @@ void World::clear_chunk(Chunk& ch) {
 // state may be non-finite.
 bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
     constexpr std::uint32_t end2_bit = 1u << 31;
-    Vec* force = bodies.force.data();
-    Vec* moment = bodies.moment.data();
-    const Vec *position = bodies.position.data(), *velocity = bodies.velocity.data();
-    const double *local_damping = bodies.local_damping.data(), *viscous_damping = bodies.viscous_damping.data();
-    // set when a sum of the body's values is Inf or NaN (so is the sum then;
-    // an overflow of finite values too is caught, check_finite() tells):
-    // an OR, not a running sum, so that no body waits for the previous one
-    bool non_finite = false;
-    const bool plane = dim == 2;
-    for (std::size_t i = i0; i < i1; ++i) {
-        if (any_accumulation_)  // fields of rates-stage models are summed after that stage
+    if (any_accumulation_)  // fields of rates-stage models are summed after that stage
+        for (std::size_t i = i0; i < i1; ++i)
             for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
                 const Entry en = entries_[e];
                 const ContactSet& s = *sets_[en.set];
@@ -577,16 +568,34 @@ bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
                 const ModelInstance& owner = *set_owner_[en.set];
                 if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
             }
-        if (local_damping[i] > 0 || viscous_damping[i] > 0) damp_body(i, force[i], moment[i], local_work);
-        if (plane) {  // (z, vz of a 2D world are zero: Bodies::add, the kicks)
+    const double *local_damping = bodies.local_damping.data(), *viscous_damping = bodies.viscous_damping.data();
+    for (std::size_t i = i0; i < i1; ++i)
+        if (local_damping[i] > 0 || viscous_damping[i] > 0) damp_body(i, bodies.force[i], bodies.moment[i], local_work);
+    return bodies_finite(i0, i1);
+}
+
+// Bodies [i0, i1)'s sums, in a loop of their own (the damping's call made
+// the compiler keep the flag and the columns' addresses in memory): a 2D
+// world's force and moment projected on its plane, then false when a sum of
+// a body's values is Inf or NaN (so is the sum then; an overflow of finite
+// values too is caught, check_finite() tells which body).
+bool World::bodies_finite(std::size_t i0, std::size_t i1) {
+    Vec* force = bodies.force.data();
+    Vec* moment = bodies.moment.data();
+    const Vec *position = bodies.position.data(), *velocity = bodies.velocity.data();
+    // an OR, not a running sum, so that no body waits for the previous one
+    bool non_finite = false;
+    if (dim == 2) {  // (z, vz of a 2D world are zero: Bodies::add, the kicks)
+        for (std::size_t i = i0; i < i1; ++i) {
             force[i].z() = 0; moment[i].x() = 0; moment[i].y() = 0;
             non_finite |= !(std::fabs(force[i].x() + force[i].y() + moment[i].z() + position[i].x() + position[i].y() +
                                       velocity[i].x() + velocity[i].y()) < kInf);
-        } else {
-            non_finite |= !(std::fabs(force[i].sum() + moment[i].sum() + position[i].sum() + velocity[i].sum()) < kInf);
         }
+        return !non_finite;
     }
-    return !non_finite;  // check_finite() finds which body
+    for (std::size_t i = i0; i < i1; ++i)
+        non_finite |= !(std::fabs(force[i].sum() + moment[i].sum() + position[i].sum() + velocity[i].sum()) < kInf);
+    return !non_finite;
 }
 
 // Sum contact forces and moments onto bodies, then finish each body, in

@@ -549,6 +549,7 @@ private:
     void add_chunk_sums(std::size_t first_body, std::size_t end_body);
     void clear_chunk(Chunk& ch);
     bool finish_bodies(std::size_t first_body, std::size_t end_body, double& local_work);
+    bool bodies_finite(std::size_t first_body, std::size_t end_body);
     bool reduce(double closing_kick);  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
     bool has_passes(std::uint32_t phase) const;
