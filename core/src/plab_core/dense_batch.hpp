@@ -125,8 +125,9 @@ struct OptionalInputs {
     }
 };
 
-// Whether a ball–ball candidate is in its model's range: bonded rows always
-// are; otherwise the gap or the centre distance, as the model declares.
+// Whether a candidate (ball–ball or ball–wall) is in its model's range:
+// bonded rows always are; otherwise the gap or the centre distance, as the
+// model declares.
 struct RangeTest {
     bool by_distance;
     int persist;  // history slot that marks a bond, or -1

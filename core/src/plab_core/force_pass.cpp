@@ -72,9 +72,8 @@ inline double facet_distance(const Facet& f, const Vec& xi, Vec& normal, std::ui
 // without a branch per row (a third of a settled pile's wall candidates
 // are out of range, in no pattern).
 bool World::wall_geometry_rows(const ModelInstance& inst, ContactSet& s, std::size_t begin, std::size_t end) {
+    const RangeTest in_range(inst);  // (a bond holds at any gap)
     const auto& B = bodies;
-    const bool by_distance = inst.desc->range_kind == PLAB_RANGE_DISTANCE;
-    const int persist = inst.desc->persist_slot;
     std::uint32_t rows[kContactBatch];
     bool exceeded = false;
     for (std::size_t k0 = begin; k0 < end; k0 += kContactBatch) {
@@ -83,11 +82,10 @@ bool World::wall_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
             Vec normal;
             const double dist = facet_distance(walls.facets[s.end2[k]], B.position[s.end1[k]], normal, s.interior[k]);
             const double gap = dist - B.radius[s.end1[k]];
+            put(s.normal, k, normal);  // (read for active rows only)
             s.gap[k] = gap;
             s.distance[k] = dist;
-            bool active = by_distance ? dist <= inst.range : gap <= inst.range;
-            if (persist >= 0) active |= s.history[k * inst.stride + std::size_t(persist)] > 0;  // a bond holds at any gap
-            s.active[k] = active;
+            s.active[k] = in_range(s.history, k, dist, gap);
         }
         const std::size_t n_active = list_flagged_rows(s.active.data() + k0, k1 - k0, std::uint32_t(k0), rows);
         for (std::size_t a = 0; a < n_active; ++a) {
@@ -96,12 +94,9 @@ bool World::wall_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
             const Vec& xi = B.position[i];
             const double ri = B.radius[i], dist = s.distance[k], gap = s.gap[k];
             const Facet& f = walls.facets[s.end2[k]];
-            Vec normal;
-            std::uint8_t interior;
-            facet_distance(f, xi, normal, interior);  // (the normal again: the same bits)
+            const Vec normal(&s.normal[3 * k]);
             const Vec point = xi + normal * (ri + 0.5 * (dist - ri));
             const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
-            put(s.normal, k, normal);
             put(s.point, k, point);
             put(s.rel_velocity, k, walls.velocity_at(f.wall, point) - vi);
             put(s.rel_angular_velocity, k, walls.walls[f.wall].angular_velocity - B.angular_velocity[i]);
@@ -491,7 +486,7 @@ template <int D> using Int = std::integral_constant<int, D>;
 // World::add_to_slot(), slot_width()), then cleared for the next sweep.
 template <int Dim, bool ForcesOnly>
 inline void take_slot(Vec& f, Vec& m, double* slot) {
-    constexpr int width = Dim == 2 ? (ForcesOnly ? 2 : 3) : (ForcesOnly ? 3 : 6);
+    constexpr std::size_t width = slot_doubles(Dim, ForcesOnly);
     if (Dim == 3) {
         f += Vec(slot);
         if (!ForcesOnly) m += Vec(slot + 3);
@@ -500,7 +495,7 @@ inline void take_slot(Vec& f, Vec& m, double* slot) {
         f.y() += slot[1];
         if (!ForcesOnly) m.z() += slot[2];
     }
-    for (int c = 0; c < width; ++c) slot[c] = 0.0;
+    for (std::size_t c = 0; c < width; ++c) slot[c] = 0.0;
 }
 } // namespace
 
@@ -529,7 +524,7 @@ void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
         constexpr int Dim = decltype(d)::value;
         constexpr bool F = decltype(forces_only)::value;
         double* p = partial_fm_.data() + ch.offset;
-        constexpr std::size_t width = Dim == 2 ? (F ? 2 : 3) : (F ? 3 : 6);  // slot_width()
+        constexpr std::size_t width = slot_doubles(Dim, F);
         if (ch.listed) {  // its balls in [i0, i1), ascending
             const std::int32_t* first = chunk_bodies_.data() + ch.first_listed;
             const std::int32_t* q0 = std::lower_bound(first, first + ch.slots, std::int32_t(i0));
@@ -547,7 +542,8 @@ void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
     }
 }
 
-// Before a sweep adds into chunk ch: its slots to zero, unless
+// Before a sweep adds into chunk ch (and before it sets the chunk's width):
+// the slots the last sweep wrote, at its width, to zero, unless
 // add_chunk_sums() left them so.
 void World::clear_chunk(Chunk& ch) {
     if (!ch.zeroed) std::fill_n(partial_fm_.data() + ch.offset, slot_width(ch.forces_only) * ch.slots, 0.0);

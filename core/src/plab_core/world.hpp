@@ -25,7 +25,11 @@ namespace plab {
 // the ids of the two ends (World::row_keys); history is carried across
 // rebuilds by that key.
 // The partial-sum slot layouts (World::slot_width): 2D fx, fy and the
-// moment about z; 3D force, then moment.
+// moment about z; 3D force, then moment. Forces only (the centre-force
+// path): 2D fx, fy; 3D force.
+constexpr std::size_t slot_doubles(int dim, bool forces_only) {
+    return dim == 2 ? (forces_only ? 2 : 3) : (forces_only ? 3 : 6);
+}
 inline void add_to_slot_2d(double* slot, double fx, double fy, double mz) {
     slot[0] += fx;
     slot[1] += fy;
@@ -338,7 +342,7 @@ private:
     // sized for kSlotDoubles). 3D: force, moment; 2D: fx, fy and the moment
     // about z (finish_bodies() drops the rest). No moment on the
     // centre-force path: 3D fx, fy, fz; 2D fx, fy.
-    std::size_t slot_width(bool forces_only) const { return dim == 2 ? (forces_only ? 2 : 3) : (forces_only ? 3 : 6); }
+    std::size_t slot_width(bool forces_only) const { return slot_doubles(dim, forces_only); }
     void add_to_slot(double* slot, const Vec& f, const Vec& m) const {
         if (dim == 2) add_to_slot_2d(slot, f[0], f[1], m[2]);
         else add_to_slot_3d(slot, f, m);
