@@ -10,7 +10,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <tuple>
 
 namespace fs = std::filesystem;
@@ -22,11 +21,15 @@ constexpr char kMagic[8] = {'P', 'L', 'A', 'B', 'C', 'K', 'P', 'T'};
 constexpr std::uint32_t kEndianMarker = 0x01020304u;
 } // namespace
 
-CheckpointReader::CheckpointReader(const std::string& path) : path_(path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw CheckpointError("cannot open checkpoint " + path);
-    data_.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-    if (data_.size() < 16 || std::memcmp(data_.data(), kMagic, sizeof kMagic) != 0)
+// The file is read as it is parsed, not into memory first: a restart then
+// peaks at the world it builds, not at the world plus one copy of the file
+// per reader (Simulation::restart opens two).
+CheckpointReader::CheckpointReader(const std::string& path) : path_(path), file_(path, std::ios::binary) {
+    if (!file_) throw CheckpointError("cannot open checkpoint " + path);
+    std::error_code ec;
+    size_ = fs::file_size(path, ec);
+    char magic[sizeof kMagic];
+    if (ec || size_ < 16 || !file_.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
         throw CheckpointError(path + " is not a plab checkpoint (no PLABCKPT header)");
     pos_ = sizeof kMagic;
     format_ = u32();
@@ -49,21 +52,21 @@ void CheckpointReader::fail(const std::string& why) const {
 }
 
 void CheckpointReader::raw(void* p, std::size_t n) {
-    if (n > data_.size() - pos_) fail("the file ends early (truncated or damaged)");
-    std::memcpy(p, data_.data() + pos_, n);
+    if (n > size_ - pos_) fail("the file ends early (truncated or damaged)");
+    if (!file_.read(static_cast<char*>(p), std::streamsize(n))) fail("reading failed at byte " + std::to_string(pos_));
     pos_ += n;
 }
 
 std::uint64_t CheckpointReader::count(std::size_t element_bytes) {
     const std::uint64_t n = u64();
-    if (n > (data_.size() - pos_) / element_bytes) fail("a length of " + std::to_string(n) + " runs past the end of the file");
+    if (n > (size_ - pos_) / element_bytes) fail("a length of " + std::to_string(n) + " runs past the end of the file");
     return n;
 }
 
 std::string CheckpointReader::str() {
     const std::uint64_t n = count(1);
-    std::string s(data_.data() + pos_, n);
-    pos_ += n;
+    std::string s(n, '\0');
+    if (n) raw(s.data(), n);
     return s;
 }
 
@@ -71,9 +74,9 @@ void CheckpointReader::section(const std::string& name) {
     const std::size_t at = pos_;
     const std::uint64_t n = u64();
     std::string found;
-    if (n <= 64 && n <= data_.size() - pos_) {
-        found.assign(data_.data() + pos_, n);
-        pos_ += n;
+    if (n <= 64 && n <= size_ - pos_) {
+        found.resize(n);
+        raw(found.data(), n);
     }
     if (found != name)
         fail("expected section '" + name + "' at byte " + std::to_string(at) + ", found " +

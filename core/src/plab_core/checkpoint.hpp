@@ -107,8 +107,10 @@ public:
 private:
     void raw(void* p, std::size_t n);
     std::uint64_t count(std::size_t element_bytes);  // a length that fits in what is left
-    std::string path_, data_, section_;
-    std::size_t pos_ = 0;
+    std::string path_;
+    std::ifstream file_;
+    std::string section_;
+    std::uint64_t size_ = 0, pos_ = 0;  // the file's length and the read position
     std::uint32_t format_ = 0;
 };
 
