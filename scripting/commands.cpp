@@ -401,16 +401,17 @@ void Simulation::cycle(long n) {
         ~Unset() { w.contact_forces_wanted = nullptr; }
     } unset{w};
     w.contact_forces_wanted = [&] { return k + 1 >= n || stop_signal() != 0 || due_after_step().any(); };
-    for (; k < n; ++k) {
+    const auto one_step = [&] {
         w.step();
         ++run_.steps;
         after_step();
+    };
+    for (; k < n; ++k) {
+        one_step();
         if (stop_signal()) {  // the step is complete: stop here, run() writes the checkpoint
             if (w.contact_forces_current()) break;
             ++k;  // (the signal came after the step asked): one more, which writes them
-            w.step();
-            ++run_.steps;
-            after_step();
+            one_step();
             break;
         }
         if (progress && (k & 255) == 0) {
