@@ -472,16 +472,67 @@ TEST_CASE("fluid/solid density ratio 0.1, 1 and 10: a heavy disc sinks no faster
     }
 }
 
-TEST_CASE("a heavy disc on a floor contact sized for a light one goes through it and stops on the domain, and a stiffer "
-          "floor holds it", "[stability][coupling]") {
-    // rho_s = 10000 reaches ~0.5 m/s: the floor's kn 1e3 N/m lets it overlap v sqrt(m/k) ~ 3 mm > r
+TEST_CASE("a heavy disc on a floor contact sized for a light one stops on the overlap as its centre crosses the "
+          "floor, and a stiffer floor holds it", "[stability][coupling]") {
+    // rho_s = 10000 reaches ~0.5 m/s: the floor's kn 1e3 N/m lets it overlap v sqrt(m/k) ~ 3 mm > r; the
+    // box's floor is a segment, whose side the contact remembers (facet_distance), so the overlap passes r
     const Settling soft = settle(0.1, 0.3);
     REQUIRE(soft.stopped);
-    CHECK(soft.quantity == "domain");
-    CHECK_THAT(soft.message, Contains("(group disc)") && Contains("went through a wall"));
+    CHECK(soft.quantity == "overlap");
+    CHECK_THAT(soft.message, Contains("(group disc)") && Contains("wall 'box'") && Contains("max_overlap"));
     const Settling stiff = settle(0.1, 0.3, 1e5);
     INFO(stiff.message);
     CHECK_FALSE(stiff.stopped);
     CHECK(stiff.y.back() > 0.0);
     CHECK(stiff.y.back() < 0.00125 + 1e-4);  // resting on the floor
+}
+
+// A segment (2D) or triangle (3D) has two faces and an unsigned distance: a
+// ball driven through one must not be pushed out of the far face as if it
+// had always been there. The contact remembers its side, also across
+// neighbour-list rebuilds, and the overlap check stops the run as the centre
+// crosses.
+TEST_CASE("a ball driven through a segment or triangle wall stops on the overlap as its centre crosses it, with and "
+          "without rebuilds at every step", "[stability]") {
+    for (int dim : {2, 3}) {
+        for (double skin : {0.002, 1e-9}) {
+            CAPTURE(dim, skin);
+            auto v = [dim](double x, double y, double z) { return dim == 2 ? json::array({x, y}) : json::array({x, y, z}); };
+            const json wall = dim == 2 ? json{{"type", "segment"}, {"name", "sheet"}, {"from", {-0.05, 0}}, {"to", {0.05, 0}}}
+                                       : json{{"type", "rectangle"}, {"name", "sheet"},
+                                              {"corners", {{-0.05, 0, -0.05}, {0.05, 0, -0.05}, {0.05, 0, 0.05}, {-0.05, 0, 0.05}}}};
+            // kn 10 N/m: the ball (0.31 kg in 2D, 4 g in 3D) would overlap v sqrt(m/k) >> r
+            const json scene = {{"dimension", dim},
+                                {"plugins", {"linear"}},
+                                {"skin", skin},
+                                {"timestep", {{"fixed", 1e-4}}},
+                                {"domain", {{"min", v(-0.1, -0.1, -0.1)}, {"max", v(0.1, 0.1, 0.1)}}},
+                                {"bodies", {{{"type", "ball"}, {"group", "ball"}, {"position", v(0.001, 0.03, 0.002)},
+                                             {"radius", 0.01}, {"density", 1000}, {"velocity", v(0, -1, 0)}}}},
+                                {"walls", {wall}},
+                                {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"},
+                                                     {"properties", {{"kn", 10}, {"ks", 10}}}}}}};
+            Simulation sim(scene);
+            sim.set_quiet(true);
+            World& w = sim.world();
+            w.prepare();
+            double y_last = w.bodies.position[0].y();
+            std::string quantity, message;
+            try {
+                for (int k = 0; k < 1000; ++k) {
+                    w.step();
+                    y_last = w.bodies.position[0].y();
+                }
+            } catch (const RunError& e) {
+                quantity = e.quantity();
+                message = e.what();
+            }
+            INFO(message);
+            REQUIRE(quantity == "overlap");
+            CHECK_THAT(message, Contains("wall 'sheet'"));
+            // the last completed step left the centre above the sheet, within one step's travel (1e-4 m)
+            CHECK(y_last >= 0.0);
+            CHECK(y_last < 1.5e-4);
+        }
+    }
 }

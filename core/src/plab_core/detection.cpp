@@ -64,8 +64,12 @@ std::vector<std::pair<const char*, std::vector<double>*>> ContactSet::double_col
 }
 
 void ContactSet::release_columns() {
-    for (auto* v : {&active, &interior}) release(*v);
-    for (auto& [name, col] : double_columns()) release(*col);
+    release(active);
+    // a wall set's normal and interior flags say which face of a facet each
+    // row's ball is on: install_pairs() carries them to the new rows
+    if (!with_wall) release(interior);
+    for (auto& [name, col] : double_columns())
+        if (!with_wall || col != &normal) release(*col);
     release(batch_energy);
     for (auto* acc : {&acc1, &acc2})
         for (auto& a : *acc) release(a);
@@ -232,6 +236,11 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     fill(t.history, n * stride, 0.0);  // (fill: a block too small goes before the new one comes)
     fill(t.e1, n, 0);
     fill(t.e2, n, 0);
+    // a wall row's last normal and interior flag say which face of a facet
+    // its ball is on (facet_distance): survivors keep them
+    const bool sides = set.with_wall;
+    fill(t.normal, sides ? 3 * n : 0, 0.0);
+    fill(t.interior, sides ? n : 0, std::uint8_t(1));
     // the old rows are sorted by the same keys: one merge per range finds
     // the survivors, from the first old row not below the range's first key
 #pragma omp parallel for schedule(static) if (parallel)
@@ -251,10 +260,15 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
             const auto key = pair_keys(set.with_wall, pairs[r][0], pairs[r][1]);
             while (old < set.size() && row_keys(set, old) < key) ++old;
             double* row = t.history.data() + r * stride;
-            if (old < set.size() && row_keys(set, old) == key)
+            if (old < set.size() && row_keys(set, old) == key) {
                 std::copy_n(set.history.data() + old * stride, stride, row);  // survivor keeps its history
-            else
+                if (sides) {
+                    std::copy_n(set.normal.data() + 3 * old, 3, t.normal.data() + 3 * r);
+                    t.interior[r] = set.interior[old];
+                }
+            } else {
                 for (int h = 0; h < stride; ++h) row[h] = inst.desc->history[h].default_value;
+            }
         }
     }
     // swapped, not moved: the old list's buffers serve the next rebuild
@@ -268,6 +282,14 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
         release(pairs);
     }
     lay_out_columns(inst, set);
+    if (sides) {
+        set.normal.swap(t.normal);
+        set.interior.swap(t.interior);
+        if (lean || n > lean_rebuild_rows) {
+            release(t.normal);
+            release(t.interior);
+        }
+    }
     fill_pair_constants(set);
 }
 

@@ -50,8 +50,15 @@ bool World::geometry_rows(const ModelInstance& inst, ContactSet& s, std::size_t 
 }
 
 namespace {
-// A ball's distance from a wall facet (signed for a plane: a ball behind
-// it is pushed back) and the contact normal, from the ball into the wall.
+// A ball's distance from a wall facet and the contact normal, from the ball
+// into the wall. Signed for a plane: a ball behind it is pushed back. A
+// segment or triangle has two faces, and the distance to it is unsigned; so
+// that a ball whose centre goes through one is not pushed out of the far
+// face (its overlap would never pass the radius, and max_overlap never
+// fire), the row remembers its side: when the normal of a contact inside
+// the facet turns over from one step to the next (`normal` comes in as the
+// last one; zero on a new row), the centre has crossed the facet, and the
+// contact keeps the old normal at a negative distance, as for a plane.
 inline double facet_distance(const Facet& f, const Vec& xi, Vec& normal, std::uint8_t& interior) {
     if (f.kind == FacetKind::plane) {
         normal = -f.b;
@@ -61,8 +68,14 @@ inline double facet_distance(const Facet& f, const Vec& xi, Vec& normal, std::ui
     const ClosestPoint cp = closest_point(f, xi);
     const Vec d = cp.point - xi;
     const double dist = d.norm();
+    const Vec before = normal;
+    const bool was_interior = interior != 0;
     normal = dist > 0 ? Vec(d / dist) : Vec::UnitX();
     interior = cp.interior;
+    if (was_interior && cp.interior && before.dot(normal) < 0) {  // behind the face it came from
+        normal = before;
+        return -dist;
+    }
     return dist;
 }
 } // namespace
@@ -79,7 +92,7 @@ bool World::wall_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
     for (std::size_t k0 = begin; k0 < end; k0 += kContactBatch) {
         const std::size_t k1 = std::min(end, k0 + kContactBatch);
         for (std::size_t k = k0; k < k1; ++k) {
-            Vec normal;
+            Vec normal(&s.normal[3 * k]);  // the last step's (facet_distance)
             const double dist = facet_distance(walls.facets[s.end2[k]], B.position[s.end1[k]], normal, s.interior[k]);
             const double gap = dist - B.radius[s.end1[k]];
             put(s.normal, k, normal);  // (read for active rows only)

@@ -72,7 +72,7 @@ struct ContactSet {
 
     std::size_t size() const { return end1.size(); }
     void resize_columns(std::size_t n, int n_accumulated);
-    void release_columns();  // every per-row column but the ends and history, freed
+    void release_columns();  // every per-row column but the ends and history (and a wall set's sides), freed
     // The per-row columns of doubles (all but ends, flags and history), by
     // name: checkpoints save them by name, release_columns() frees them.
     std::vector<std::pair<const char*, std::vector<double>*>> double_columns();
@@ -486,6 +486,8 @@ private:
         struct SetBuffers {
             std::vector<std::int32_t> e1, e2;
             std::vector<double> history;
+            std::vector<double> normal;          // ball–wall rows: the side each survivor is on
+            std::vector<std::uint8_t> interior;  // (facet_distance, force_pass.cpp)
         };
         std::vector<SetBuffers> sets;
     };
