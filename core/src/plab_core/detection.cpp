@@ -237,8 +237,9 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     fill(t.e1, n, 0);
     fill(t.e2, n, 0);
     // a wall row's last normal and interior flag say which face of a facet
-    // its ball is on (facet_distance): survivors keep them
-    const bool sides = set.with_wall;
+    // its ball is on (facet_distance): survivors keep them, where the set
+    // has them for its rows (not after a snapshot's rows come back)
+    const bool sides = set.with_wall && set.normal.size() == 3 * set.size() && set.interior.size() == set.size();
     fill(t.normal, sides ? 3 * n : 0, 0.0);
     fill(t.interior, sides ? n : 0, std::uint8_t(1));
     // the old rows are sorted by the same keys: one merge per range finds
