@@ -66,7 +66,7 @@ std::uint64_t CheckpointReader::count(std::size_t element_bytes) {
 std::string CheckpointReader::str() {
     const std::uint64_t n = count(1);
     std::string s(n, '\0');
-    if (n) raw(s.data(), n);
+    raw(s.data(), n);
     return s;
 }
 

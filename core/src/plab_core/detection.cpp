@@ -276,7 +276,8 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     set.end1.swap(t.e1);
     set.end2.swap(t.e2);
     set.history.swap(t.history);
-    if (lean || n > lean_rebuild_rows) {  // the old rows and the pairs go before the columns come
+    const bool free_buffers = lean || n > lean_rebuild_rows;
+    if (free_buffers) {  // the old rows and the pairs go before the columns come
         release(t.e1);
         release(t.e2);
         release(t.history);
@@ -286,7 +287,7 @@ void World::install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std:
     if (sides) {
         set.normal.swap(t.normal);
         set.interior.swap(t.interior);
-        if (lean || n > lean_rebuild_rows) {
+        if (free_buffers) {
             release(t.normal);
             release(t.interior);
         }

@@ -95,7 +95,7 @@ bool World::wall_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
             Vec normal(&s.normal[3 * k]);  // the last step's (facet_distance)
             const double dist = facet_distance(walls.facets[s.end2[k]], B.position[s.end1[k]], normal, s.interior[k]);
             const double gap = dist - B.radius[s.end1[k]];
-            put(s.normal, k, normal);  // (read for active rows only)
+            put(s.normal, k, normal);  // (the active rows' geometry below, and the next step's side)
             s.gap[k] = gap;
             s.distance[k] = dist;
             s.active[k] = in_range(s.history, k, dist, gap);

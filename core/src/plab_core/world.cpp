@@ -317,10 +317,10 @@ void World::restore_snapshot() {
         for (ContactSet* c : {&inst->balls, &inst->walls}) {
             const SetState& st = s.sets[k++];
             c->end1 = st.end1; c->end2 = st.end2; c->history = st.history;  // (prepare()'s rebuild lays the columns out)
-            // the side memory of the wall rows (facet_distance) belongs to
-            // the rows before the restore: the restored rows start without it
-            c->normal.clear();
-            c->interior.clear();
+            if (c->with_wall) {  // its side memory (facet_distance) is the rows' before the restore:
+                c->normal.clear();  // the restored rows start without it (install_pairs)
+                c->interior.clear();
+            }
         }
     const Diagnostic why = stopped;  // prepare() clears it: a run that goes on is running again
     prepare();
