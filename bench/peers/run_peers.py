@@ -10,8 +10,14 @@ loop throughput (particle-steps per second), the ratio plab/peer, and a
 physics check: pair contacts and kinetic energy at the end of each code (SPH:
 the fluid's mean height instead of contacts, and both must agree within 3 %).
 plab's throughput is from its run summary (the solve loop); the peers' from
-their "Loop time" line. Threads: plab OpenMP threads, peers MPI ranks. Each
-run's peak resident memory (wait4 maxrss) and the load average are printed.
+their "Loop time" line. Threads: plab OpenMP threads, peers MPI ranks, started
+as a user starts them: the inputs set the processors grid for the scene's
+geometry (`processors * 1 1`: the default grid cuts a settling column along
+its tall axis and one rank holds nearly all the balls) and mpirun binds each
+rank to a core. Each run's peak resident memory (wait4 maxrss) and the load
+average are printed; every table comes with the CPU model, its vector
+extensions, the date and the load average (a table is only comparable with
+one taken on the same CPU at a similar load).
 Every code runs with its own defaults, as a user would run it: OpenMP's and
 Open MPI's idle threads and ranks spin briefly before they sleep. On a
 machine shared with other work, spinning steals the others' CPU (an earlier
@@ -30,12 +36,39 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
 
 SPH_SCENE = "sph_double_dam_break"
+# the vector extensions that decide how fast the codes' loops can be (plab's kernels use AVX-512 when there)
+VECTOR_FLAGS = ("sse4_2", "avx", "fma", "avx2", "avx512f", "avx512dq", "avx512bw", "avx512vl")
+
+
+def machine():
+    """One line for every table: CPU model and vector extensions (/proc/cpuinfo), date, load average."""
+    model, flags = "unknown CPU", set()
+    try:
+        for line in open("/proc/cpuinfo"):
+            key, _, val = line.partition(":")
+            if key.strip() == "model name":
+                model = val.strip()
+            elif key.strip() == "flags":
+                flags = set(val.split())
+                break
+    except OSError:
+        pass
+    vec = " ".join(f for f in VECTOR_FLAGS if f in flags) or "none listed"
+    return (f"machine: {model}, {os.cpu_count()} CPUs, {vec}; {time.strftime('%Y-%m-%d %H:%M %Z')}; "
+            f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+
+
+def grid(infile):
+    """The input's processors line (what the table's peers ran with)."""
+    return next((" ".join(l.split()[1:]) for l in open(os.path.join(HERE, infile)) if l.startswith("processors")),
+                "LAMMPS default")
 
 
 def run_measured(cmd, env, capture):
@@ -79,8 +112,10 @@ def run_peer(exe, infile, dim, data, threads, steps, shared):
     if data:
         cmd += ["-var", "dim", str(dim), "-var", "data", data]
     if threads > 1:
+        # one rank per core, bound, as a user runs them (no --oversubscribe: more ranks than cores is an error,
+        # not a measurement); the inputs set the processors grid
         yield_idle = ["--mca", "mpi_yield_when_idle", "1"] if shared else []
-        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe"] + yield_idle + ["-np", str(threads)] + cmd
+        cmd = ["mpirun", "--allow-run-as-root", "--bind-to", "core"] + yield_idle + ["-np", str(threads)] + cmd
     env = dict(os.environ, OMP_NUM_THREADS="1")
     text, rss, cpu = run_measured(cmd, env, True)
     loop = float(re.search(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", text).group(1))
@@ -106,7 +141,10 @@ def main():
     threads = [int(t) for t in a.threads.split(",")]
     codes = a.codes.split(",")
     results = {}
+    print(machine())
     print("idle threads/ranks: " + ("yield (--shared-machine)" if a.shared_machine else "each code's default (spin, then sleep)"))
+    print("peers: MPI ranks bound to cores (mpirun --bind-to core); processors grid: " +
+          ", ".join(f"{f} {grid(f)}" for f in ("lammps_gran.in", "liggghts_gran.in", "liggghts_sph.in")))
     print(f"load average at start: {' '.join(f'{x:.2f}' for x in os.getloadavg())}", flush=True)
     for rep in range(a.reps):
         for scene in a.scenes.split(","):
@@ -131,7 +169,8 @@ def main():
                           f"{second}, kinetic {r[2]:.4g} J, peak {r[4]:.0f} MB, CPU {r[5]:.1f} s" + (f", hash {r[3]}" if r[3] else "")
                           + f", load {os.getloadavg()[0]:.2f}", flush=True)
     print(f"load average at end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
-    print(f"\nmedian of {a.reps} interleaved runs, {a.steps} steps (sph: {a.sph_steps}), "
+    print("\n" + machine())
+    print(f"median of {a.reps} interleaved runs, {a.steps} steps (sph: {a.sph_steps}), "
           "loop throughput in M particle-steps/s")
     print("| scene | threads | " + " | ".join(codes) + " | " +
           " | ".join(f"plab/{c}" for c in codes if c != "plab") +
@@ -157,7 +196,8 @@ def main():
                       f"{100 * dk:+.2f} % -> {'physics agrees (3 %)' if ok else 'PHYSICS DIFFERS'}")
     # On a shared machine wall-clock loop times measure the load as much as the
     # codes; CPU time (whole process, set-up included) is the steadier figure.
-    print("\nmedian CPU seconds of the whole run (user + system, all threads/ranks), and peer/plab")
+    print("\n" + machine())
+    print("median CPU seconds of the whole run (user + system, all threads/ranks), and peer/plab")
     for scene in a.scenes.split(","):
         for t in threads:
             have = [c for c in codes if (scene, t, c) in results]
