@@ -2,7 +2,7 @@
 // Sibilla 2007): a water column 0.1 m wide and 0.14 m high held by a rubber
 // gate 0.079 m long and 0.005 m thick, clamped at its top; the free lower end
 // opens under the water. Reference: the experiment's free-end displacement,
-// ../shared/reference/antoci_2007_gate_tip.csv.
+// validation/reference/antoci_2007_gate_tip.csv.
 //
 // Coupling (plug-in `coupling_fluid_structure`): the gate is a hexagonal
 // packing of bonded balls (`linear_pbond`, hexagonal_2d calibration) that

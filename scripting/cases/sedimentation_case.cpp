@@ -1,7 +1,7 @@
 // Validation case `sedimentation` (thesis §7.1, Fig. 21): a disc settling in
 // a closed box of viscous fluid, unresolved SPH–DEM coupling (plug-in
 // `coupling_fluid_particle`). Reference: Glowinski et al. (2001) velocity and
-// Zhang (2019) height, ../shared/reference/glowinski_2001_falling_cylinder.csv.
+// Zhang (2019) height, validation/reference/glowinski_2001_falling_cylinder.csv.
 //
 // Scene (thesis §7.1): box 0.02 × 0.06 m closed by fixed boundary balls at
 // dp/2 (pressure extrapolated, Islam eqs. 10–11), Wendland kernel, h = 2 dp

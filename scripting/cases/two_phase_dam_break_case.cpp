@@ -6,7 +6,7 @@
 //
 // Reference: the thesis compares with the experiment and SPH–DEM of Sun et
 // al. (2013, the thesis's [138]); those numbers are not in
-// ../shared/reference/. The column has the aspect of Martin & Moyce's
+// validation/reference/. The column has the aspect of Martin & Moyce's
 // (height 2a), so their pure-water surge is the bound used here: the
 // mixture, held back by a gate that takes 0.15 s to clear the water and by
 // grains that the water must drag along, should run out no faster than it.
