@@ -25,4 +25,4 @@ export OMP_WAIT_POLICY=PASSIVE  # the tests that set 2 threads sleep, not spin, 
 # static cantilever solves (hundreds of thousands of steps on the same bond
 # code the quick bonded tests run) are physics runs that take an hour under
 # ASan and add run time, not coverage
-ctest --output-on-failure -j"$(nproc)" --timeout 1800 -E '^validate_all_quick$|cantilever' ${1:+-R "$1"}
+ctest --output-on-failure -j"$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)" --timeout 1800 -E '^validate_all_quick$|cantilever' ${1:+-R "$1"}
