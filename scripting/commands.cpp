@@ -2,6 +2,7 @@
 #include "generators.hpp"
 #include "metrics.hpp"
 #include "simulation.hpp"
+#include "variables.hpp"
 #include "plab_core/error.hpp"
 
 #include <spdlog/spdlog.h>
@@ -65,6 +66,33 @@ int body_index(const World& w, BodyId id) {
     return -1;
 }
 
+// probe.FIELD: a per-body field (e.g. sph_pressure) at `point`, the Shepard
+// average over the group's balls within `radius` with Wendland C2 weights
+// (1 - q)^4 (1 + 4q), q = d / radius; NaN while no ball is in reach. A wall
+// pressure sensor is a probe on the wall of the sensor's size.
+std::function<double(const World&)> field_probe(const Node& n, const World& w, const std::string& field) {
+    const int f = w.field_index(field);
+    if (f < 0) n.at("quantity").fail("no per-body field \"" + field + "\"" + listed("fields", w.field_names()));
+    const Vec point = n.at("point").vec(w.dim);
+    const double radius = n.at("radius").positive();
+    const std::string g = n.at("group").string();
+    const int group = w.find_group(g);
+    if (group < 0) n.at("group").fail("unknown group \"" + g + "\"" + listed("groups", w.group_names()));
+    return [f, point, radius, group](const World& x) {
+        const std::vector<double>& values = x.field(f);
+        double sum = 0, weight = 0;
+        for (std::size_t i = 0; i < x.bodies.size(); ++i) {
+            if (x.bodies.group[i] != group) continue;
+            const double q = (x.bodies.position[i] - point).norm() / radius;
+            if (q >= 1) continue;
+            const double wq = std::pow(1 - q, 4) * (1 + 4 * q);
+            sum += wq * values[i];
+            weight += wq;
+        }
+        return weight > 0 ? sum / weight : std::nan("");
+    };
+}
+
 // One history column from its description.
 std::function<double(const World&)> quantity(const Node& n, const World& w) {
     const std::string q = n.at("quantity").string();
@@ -74,7 +102,7 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
         "time, step, dt, contacts, unbalanced_ratio, bonds.intact, bonds.broken, "
         "energy.<kinetic|strain|body|boundary|slip|dashpot|local_damping|bond_break|balance>, ball.<position|velocity|angular_velocity|force|applied_force>.<x|y|z|magnitude> (with id), "
         "group.<max|min|mean>.<position|velocity|...>.<x|y|z|magnitude> (with group), wall.<force|moment>.<x|y|z> "
-        "(with wall)";
+        "(with wall), probe.<field> (with point, radius, group), or an \"expression\" of earlier columns";
     if (q == "time") return [](const World& x) { return x.time; };
     if (q == "step") return [](const World& x) { return double(x.step_count); };
     if (q == "dt") return [](const World& x) { return x.last_dt; };
@@ -137,6 +165,7 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
             return pick(force ? wl.force : wl.moment, c);
         };
     }
+    if (parts[0] == "probe" && parts.size() == 2) return field_probe(n, w, parts[1]);
     qn.fail("unknown quantity \"" + q + "\"; known: " + known);
 }
 
@@ -149,10 +178,20 @@ void Simulation::load_histories(const Node& n) {
     rec.expect_array();
     for (std::size_t i = 0; i < rec.size(); ++i) {
         const Node h = rec.at(i);
-        h.allow_keys({"name", "quantity", "id", "group", "wall"});
+        h.allow_keys({"name", "quantity", "id", "group", "wall", "point", "radius", "expression"});
         HistoryColumn col;
-        col.name = h.string_or("name", h.at("quantity").string());
-        col.sample = quantity(h, *world_);
+        if (h.has("expression")) {
+            if (h.has("quantity")) h.fail("a column has a \"quantity\" or an \"expression\", not both");
+            col.name = h.at("name").string();
+            std::vector<std::string> earlier;
+            for (const auto& c : history_cols_) earlier.push_back(c.name);
+            auto expr = std::make_shared<Expression>(h.at("expression").string(), earlier, scene_variables(scene_),
+                                                     h.at("expression").path());
+            col.derive = [expr](const std::vector<double>& row) { return (*expr)(row); };
+        } else {
+            col.name = h.string_or("name", h.at("quantity").string());
+            col.sample = quantity(h, *world_);
+        }
         history_cols_.push_back(std::move(col));
     }
 }
@@ -359,14 +398,17 @@ Simulation::DueOutputs Simulation::due_after_step() const {
             at(checkpoint_every_, next_checkpoint_time_)};
 }
 
+std::vector<double> Simulation::sample_history_row() const {
+    std::vector<double> row;
+    row.reserve(history_cols_.size());
+    for (const auto& c : history_cols_) row.push_back(c.derive ? c.derive(row) : c.sample(*world_));
+    return row;
+}
+
 void Simulation::after_step() {
     const World& w = *world_;
     const DueOutputs due = due_after_step();
-    if (due.history) {
-        std::vector<double> row;
-        for (const auto& c : history_cols_) row.push_back(c.sample(w));
-        history_rows_.push_back(std::move(row));
-    }
+    if (due.history) history_rows_.push_back(sample_history_row());
     if (due.vtk) {
         write_vtk_snapshot();
         next_vtk_time_ += vtk_interval_;
@@ -385,8 +427,7 @@ void Simulation::cycle(long n) {
     World& w = *world_;
     if (w.step_count == 0 && history_rows_.empty() && !history_cols_.empty()) {
         w.prepare();
-        history_rows_.emplace_back();
-        for (const auto& c : history_cols_) history_rows_.back().push_back(c.sample(w));
+        history_rows_.push_back(sample_history_row());
     }
     const bool progress = !quiet_ && isatty(STDERR_FILENO);
     auto last = std::chrono::steady_clock::now();

@@ -5,12 +5,13 @@
 //     max, min, mean, max_abs) times `scale`, optionally over the samples
 //     whose time lies in [from, to] (a terminal velocity is the mean over a
 //     plateau), against an exact value: error = |value - exact| / |exact|;
-//   reference:  a history against a reference curve (a CSV in
-//     shared/reference or beside the scene), both scaled to the reference's
+//   reference:  a history against a reference curve (a CSV beside
+//     the scene or in validation/reference), both scaled to the reference's
 //     variables: error = mean |sim - ref| / |ref| over the reference points
 //     inside the run (and `x_max`), with the max beside it.
 #include "metrics.hpp"
 #include "validation.hpp"
+#include "variables.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,12 +25,18 @@ namespace plab {
 
 namespace {
 
-double reduce(const Node& n, const std::vector<double>& h, const std::string& op) {
+double reduce(const Node& n, const std::vector<double>& h, const std::vector<double>& t, const std::string& op) {
     if (h.empty()) n.fail("the history has no samples");
     if (op == "final") return h.back();
     if (op == "change") return h.back() - h.front();  // a displacement from the first sample
     if (op == "max") return *std::max_element(h.begin(), h.end());
     if (op == "min") return *std::min_element(h.begin(), h.end());
+    if (op == "duration") {  // time between the first and the last nonzero sample (e.g. of a contact count)
+        const auto first = std::find_if(h.begin(), h.end(), [](double v) { return v != 0; });
+        const auto last = std::find_if(h.rbegin(), h.rend(), [](double v) { return v != 0; });
+        if (first == h.end() || t.empty()) return 0.0;
+        return t[std::size_t(h.rend() - last) - 1] - t[std::size_t(first - h.begin())];
+    }
     if (op == "max_abs") {
         double m = 0;
         for (double v : h) m = std::max(m, std::fabs(v));
@@ -40,8 +47,20 @@ double reduce(const Node& n, const std::vector<double>& h, const std::string& op
     return sum / double(h.size());  // mean
 }
 
-std::vector<std::pair<double, double>> read_curve(const Node& ref, const std::string& scene_dir) {
-    ref.allow_keys({"file", "x_column", "y_column", "x_max"});
+} // namespace
+
+std::vector<std::pair<double, double>> reference_curve(const Node& ref, const std::string& scene_dir) {
+    ref.allow_keys({"file", "x_column", "y_column", "x_max", "where"});
+    // rows of one series: {"column": k, "equals": "P1"}, every condition met
+    std::vector<std::pair<long, std::string>> where;
+    if (ref.has("where")) {
+        const Node wn = ref.at("where");
+        wn.expect_array();
+        for (std::size_t k = 0; k < wn.size(); ++k) {
+            wn.at(k).allow_keys({"column", "equals"});
+            where.emplace_back(wn.at(k).at("column").integer(0, 1000), wn.at(k).at("equals").string());
+        }
+    }
     const std::string file = ref.at("file").string();
     std::string path = file;
     if (!fs::path(file).is_absolute()) {
@@ -60,6 +79,10 @@ std::vector<std::pair<double, double>> read_curve(const Node& ref, const std::st
         std::stringstream ss(line);
         for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
         if (long(cells.size()) <= std::max(xc, yc)) continue;
+        if (std::any_of(where.begin(), where.end(), [&](const auto& c) {
+                return long(cells.size()) <= c.first || cells[std::size_t(c.first)] != c.second;
+            }))
+            continue;
         char *ex = nullptr, *ey = nullptr;
         const double x = std::strtod(cells[xc].c_str(), &ex), y = std::strtod(cells[yc].c_str(), &ey);
         if (ex == cells[xc].c_str() || ey == cells[yc].c_str()) continue;  // a header or text cell
@@ -68,6 +91,8 @@ std::vector<std::pair<double, double>> read_curve(const Node& ref, const std::st
     if (points.empty()) ref.fail("no numeric points in columns " + std::to_string(xc) + ", " + std::to_string(yc) + " of " + path);
     return points;
 }
+
+namespace {
 
 // Linear interpolation of (xs, ys) at x; NaN outside the sampled range.
 double interpolate(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
@@ -79,55 +104,83 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
     return ys[k - 1] + w * (ys[k] - ys[k - 1]);
 }
 
-// The samples of h whose time (the `time_history`) lies in [from, to], s.
-std::vector<double> in_window(const Node& m, const Simulation& sim, const std::vector<double>& h) {
-    const auto t = sim.history(m.string_or("time_history", "time"));
+// The samples (time, value) whose time (the `time_history`) lies in [from, to].
+struct Samples {
+    std::vector<double> t, h;
+};
+Samples in_window(const Node& m, const std::vector<double>& t, const std::vector<double>& h) {
     const double from = m.number_or("from", -kInf), to = m.number_or("to", kInf);
     if (!(to > from)) m.at("to").fail("the window [from, to] = [" + std::to_string(from) + ", " + std::to_string(to) +
-                                      "] s is empty; \"to\" must exceed \"from\"");
-    std::vector<double> out;
+                                      "] is empty; \"to\" must exceed \"from\"");
+    Samples out;
     for (std::size_t k = 0; k < h.size() && k < t.size(); ++k)
-        if (t[k] >= from && t[k] <= to) out.push_back(h[k]);
+        if (t[k] >= from && t[k] <= to) { out.t.push_back(t[k]); out.h.push_back(h[k]); }
     return out;  // empty when a run stopped before the window: no error figure, not a scene error
 }
 
-json one_metric(const Node& m, const Simulation& sim, const std::string& scene_dir) {
-    m.allow_keys({"name", "history", "reduce", "scale", "analytical", "from", "to", "time_history", "x_scale", "y_scale",
-                  "reference"});
-    const std::string name = m.at("name").string();
-    const Node hn = m.at("history");
-    std::vector<double> h;
-    try {
-        h = sim.history(hn.string());
-    } catch (const InputError&) {
-        hn.fail("no history named \"" + hn.string() + "\" in scene.histories.record");
+json relative_to(json out, double value, double exact) {
+    out["value"] = value;
+    out["reference"] = exact;
+    out["error"] = exact != 0 ? std::fabs(value - exact) / std::fabs(exact) : std::fabs(value);
+    return out;
+}
+
+// A reduction of the history against an exact number.
+json analytical_metric(const Node& m, const Samples& s, json out) {
+    const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "max_abs", "duration"})
+                                           : "final";
+    return relative_to(std::move(out), reduce(m, s.h, s.t, op) * m.number_or("scale", 1.0), m.at("analytical").number());
+}
+
+// Every sample against an exact solution written in the time `t` (and the
+// scene's variables): the largest relative error ("norm": "max", default)
+// or the mean ("mean").
+json exact_metric(const Node& m, const Samples& s, const Simulation& sim, json out) {
+    const Expression exact(m.at("exact").string(), {"t"}, scene_variables(sim.scene()), m.at("exact").path());
+    const bool mean = m.has("norm") && m.at("norm").choice({"max", "mean"}) == "mean";
+    double worst = 0, sum = 0;
+    for (std::size_t k = 0; k < s.h.size(); ++k) {
+        const double e = exact({s.t[k]});
+        const double err = e != 0 ? std::fabs(s.h[k] - e) / std::fabs(e) : std::fabs(s.h[k]);
+        worst = std::max(worst, err);
+        sum += err;
     }
-    json out = {{"name", name}};
-    if (m.has("analytical")) {
-        const std::string op =
-            m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "max_abs"}) : "final";
-        if (m.has("from") || m.has("to")) h = in_window(m, sim, h);
-        if (h.empty()) {
-            out["error"] = std::nan("");
-            out["note"] = "no sample inside [from, to]: the run ended before the window";
-            return out;
-        }
-        const double value = reduce(m, h, op) * m.number_or("scale", 1.0);
-        const double exact = m.at("analytical").number();
-        out["value"] = value;
-        out["reference"] = exact;
-        out["error"] = exact != 0 ? std::fabs(value - exact) / std::fabs(exact) : std::fabs(value);
-        return out;
-    }
-    if (!m.has("reference")) m.fail("a metric needs \"analytical\" (a value) or \"reference\" (a curve)");
-    const auto t = sim.history(m.string_or("time_history", "time"));
+    out["points"] = s.h.size();
+    out["error"] = mean ? sum / double(s.h.size()) : worst;
+    out["max_error"] = worst;
+    return out;
+}
+
+// The first time (x_scale × time_history) at which y_scale × the history
+// reaches `first_above`: the run's against the reference curve's; the error
+// is the absolute difference, in the reference's x units.
+json event_metric(const Node& m, const Samples& s, const std::string& scene_dir, json out) {
+    const Node ev = m.at("event");
+    ev.allow_keys({"first_above"});
+    const double level = ev.at("first_above").number();
     const double xs = m.number_or("x_scale", 1.0), ys = m.number_or("y_scale", 1.0);
-    std::vector<double> x(t.size()), y(h.size());
-    for (std::size_t k = 0; k < t.size(); ++k) x[k] = t[k] * xs;
-    for (std::size_t k = 0; k < h.size(); ++k) y[k] = h[k] * ys;
+    double run = std::nan(""), ref = std::nan("");
+    for (std::size_t k = 0; k < s.h.size() && std::isnan(run); ++k)
+        if (s.h[k] * ys >= level) run = s.t[k] * xs;
+    for (const auto& [rx, ry] : reference_curve(m.at("reference"), scene_dir))
+        if (ry >= level) { ref = rx; break; }
+    if (std::isnan(ref)) m.at("reference").fail("the reference never reaches " + std::to_string(level));
+    out["value"] = run;
+    out["reference"] = ref;
+    out["error"] = std::fabs(run - ref);  // NaN when the run never reaches the level
+    return out;
+}
+
+// The history against a reference curve: mean (and max) relative error over
+// the reference points inside the run.
+json curve_metric(const Node& m, const Samples& s, const std::string& scene_dir, json out) {
+    const double xs = m.number_or("x_scale", 1.0), ys = m.number_or("y_scale", 1.0);
+    std::vector<double> x(s.t.size()), y(s.h.size());
+    for (std::size_t k = 0; k < s.t.size(); ++k) x[k] = s.t[k] * xs;
+    for (std::size_t k = 0; k < s.h.size(); ++k) y[k] = s.h[k] * ys;
     double sum = 0, worst = 0;
     std::size_t n = 0;
-    for (const auto& [rx, ry] : read_curve(m.at("reference"), scene_dir)) {
+    for (const auto& [rx, ry] : reference_curve(m.at("reference"), scene_dir)) {
         const double sim_y = interpolate(x, y, rx);
         if (std::isnan(sim_y) || ry == 0) continue;
         const double e = std::fabs(sim_y - ry) / std::fabs(ry);
@@ -139,6 +192,34 @@ json one_metric(const Node& m, const Simulation& sim, const std::string& scene_d
     out["error"] = n ? sum / double(n) : std::nan("");
     out["max_error"] = worst;
     return out;
+}
+
+// The recorded column `name`; an error at `where` when there is none.
+std::vector<double> named_history(const Node& where, const std::string& name, const Simulation& sim) {
+    try {
+        return sim.history(name);
+    } catch (const InputError&) {
+        where.fail("no history named \"" + name + "\" in scene.histories.record");
+    }
+}
+
+json one_metric(const Node& m, const Simulation& sim, const std::string& scene_dir) {
+    m.allow_keys({"name", "history", "reduce", "scale", "analytical", "exact", "norm", "event", "from", "to",
+                  "time_history", "x_scale", "y_scale", "reference"});
+    json out = {{"name", m.at("name").string()}};
+    const std::vector<double> h = named_history(m.at("history"), m.at("history").string(), sim);
+    const std::vector<double> t = named_history(m, m.string_or("time_history", "time"), sim);
+    const Samples s = in_window(m, t, h);
+    if (s.h.empty()) {
+        out["error"] = std::nan("");
+        out["note"] = "no sample inside [from, to]: the run ended before the window";
+        return out;
+    }
+    if (m.has("analytical")) return analytical_metric(m, s, std::move(out));
+    if (m.has("exact")) return exact_metric(m, s, sim, std::move(out));
+    if (!m.has("reference")) m.fail("a metric needs \"analytical\" (a value), \"exact\" (a formula in t) or \"reference\" (a curve)");
+    if (m.has("event")) return event_metric(m, s, scene_dir, std::move(out));
+    return curve_metric(m, s, scene_dir, std::move(out));
 }
 
 } // namespace

@@ -9,4 +9,9 @@ namespace plab {
 // Errors in the block name their JSON path.
 json evaluate_metrics(const json& metrics, const Simulation& sim, const std::string& scene_dir);
 
+// The (x, y) points of a reference CSV: {"file" (beside scene_dir, else in
+// validation/reference), "x_column", "y_column", "x_max", "where": [{"column",
+// "equals"}]}. Errors name the path.
+std::vector<std::pair<double, double>> reference_curve(const Node& ref, const std::string& scene_dir);
+
 } // namespace plab

@@ -4,6 +4,7 @@
 #include "generators.hpp"
 #include "materials.hpp"
 #include "simulation.hpp"
+#include "variables.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -38,7 +39,7 @@ std::string plugin_names(const PluginHost& host) {
 } // namespace
 
 Simulation::Simulation(const json& scene, const std::string& scene_dir, std::shared_ptr<PluginHost> host)
-    : scene_(scene), scene_dir_(scene_dir), host_(host ? std::move(host) : std::make_shared<PluginHost>()),
+    : scene_(resolve_variables(scene)), scene_dir_(scene_dir), host_(host ? std::move(host) : std::make_shared<PluginHost>()),
       materials_(std::make_unique<Materials>()) {
     load(Node(scene_, "scene"));
     world_->on_snapshot = [this] { keep_last_good(); };  // (a Simulation is never moved)
@@ -49,7 +50,7 @@ Simulation::~Simulation() = default;
 void Simulation::load(const Node& root) {
     root.allow_keys({"description", "dimension", "domain", "gravity", "plugins", "bodies", "walls", "materials",
                      "contact_models", "passes", "timestep", "skin", "histories", "output", "commands", "validation",
-                     "stability", "metrics"});
+                     "stability", "metrics", "variables"});
     const int dim = int(root.at("dimension").integer(2, 3));
     world_ = std::make_unique<World>(dim, host_);
     if (root.has("domain")) {

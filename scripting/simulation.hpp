@@ -28,6 +28,8 @@ json read_scene_file(const std::string& path);
 struct HistoryColumn {
     std::string name;
     std::function<double(const World&)> sample;
+    // set for a column computed from the row's earlier columns ("expression")
+    std::function<double(const std::vector<double>& row)> derive;
 };
 
 struct Command {
@@ -148,6 +150,7 @@ private:
     void keep_last_good();
     std::string write_last_good() const;  // its path, or "" when none is kept
     void after_step();
+    std::vector<double> sample_history_row() const;
     // what after_step() writes at the world's step and time
     struct DueOutputs {
         bool history, vtk, png, checkpoint;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #ifndef PLAB_SOURCE_DIR
 #define PLAB_SOURCE_DIR "."
@@ -13,29 +14,45 @@
 
 namespace plab {
 
-std::vector<ValidationCase>& validation_cases() {
+namespace {
+std::vector<ValidationCase>& registered() {
     static std::vector<ValidationCase> cases;
+    return cases;
+}
+} // namespace
+
+std::vector<ValidationCase>& validation_cases() {
+    static std::vector<ValidationCase> cases = [] {
+        std::vector<ValidationCase> code = std::move(registered());
+        registered().clear();
+        register_data_cases(validation_dir());
+        std::vector<ValidationCase> all = std::move(registered());
+        for (ValidationCase& c : code) {
+            for (const ValidationCase& d : all)
+                if (d.name == c.name) throw std::runtime_error("validation case \"" + c.name + "\" is defined twice: in C++ and in " + validation_dir());
+            all.push_back(std::move(c));
+        }
+        return all;
+    }();
     return cases;
 }
 
 bool register_case(ValidationCase c) {
-    validation_cases().push_back(std::move(c));
+    registered().push_back(std::move(c));
     return true;
 }
 
-// shared/reference beside the clone (the project's layout), else beside the
-// working directory or inside the clone; PLAB_REFERENCE_DIR overrides.
+std::string validation_dir() {
+    if (const char* env = std::getenv("PLAB_VALIDATION_DIR")) return env;
+    return (std::filesystem::path(PLAB_SOURCE_DIR) / "validation").lexically_normal().string();
+}
+
+// The published data the cases compare with live in the repository
+// (validation/reference, each file with its source header), so a clone in
+// any folder validates; PLAB_REFERENCE_DIR points at another copy.
 std::string reference_dir() {
-    namespace fs = std::filesystem;
     if (const char* env = std::getenv("PLAB_REFERENCE_DIR")) return env;
-    const fs::path candidates[] = {fs::path(PLAB_SOURCE_DIR) / ".." / "shared" / "reference",
-                                   fs::current_path() / ".." / "shared" / "reference",
-                                   fs::path(PLAB_SOURCE_DIR) / "shared" / "reference"};
-    for (const fs::path& c : candidates) {
-        std::error_code ec;
-        if (fs::is_directory(c, ec)) return c.lexically_normal().string();
-    }
-    return candidates[0].lexically_normal().string();
+    return (std::filesystem::path(validation_dir()) / "reference").string();
 }
 
 std::string examples_dir() {
@@ -45,7 +62,7 @@ std::string examples_dir() {
 std::vector<std::vector<std::string>> reference_rows(const std::string& file) {
     const std::string path = reference_dir() + "/" + file;
     std::ifstream f(path);
-    if (!f) throw std::runtime_error("reference data not found: " + path + " (set PLAB_REFERENCE_DIR)");
+    if (!f) throw std::runtime_error("reference data not found: " + path);
     std::vector<std::vector<std::string>> rows;
     bool header = true;
     for (std::string line; std::getline(f, line);) {

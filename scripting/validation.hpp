@@ -17,7 +17,8 @@ struct CaseResult {
     std::string metric;    // what `error` measures
     std::string details;   // per-sub-case lines for the report
     std::vector<Plot> plots;  // optional: series against reference data, drawn by `plab validate --report`
-    bool passed() const { return error <= tolerance; }
+    int failed_checks = 0;    // checks beside the headline one that failed (data cases)
+    bool passed() const { return error <= tolerance && failed_checks == 0; }
 };
 
 struct ValidationCase {
@@ -25,7 +26,13 @@ struct ValidationCase {
     std::function<CaseResult(bool quick)> run;
 };
 
+// Every case: the folders of validation/ with a case.json (case_runner.cpp),
+// then those written in C++.
 std::vector<ValidationCase>& validation_cases();
+// Registers each FOLDER/<case>/case.json as a case named after its folder.
+void register_data_cases(const std::string& folder);
+// validation/ in the repository (PLAB_VALIDATION_DIR overrides).
+std::string validation_dir();
 
 // One case as run by `plab validate`, for the report.
 struct CaseRun {
@@ -40,8 +47,8 @@ struct CaseRun {
 std::string write_validation_report(const std::string& dir, const std::vector<CaseRun>& runs, bool quick);
 bool register_case(ValidationCase c);
 
-// Directory of the published reference data (shared/reference beside the
-// repository, or PLAB_REFERENCE_DIR).
+// Directory of the published reference data: validation/reference in the
+// repository, or PLAB_REFERENCE_DIR.
 std::string reference_dir();
 // Directory of the repository's examples (PLAB_EXAMPLES_DIR at build time).
 std::string examples_dir();

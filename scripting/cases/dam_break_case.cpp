@@ -1,7 +1,7 @@
 // SPH validation case `dam_break` (thesis §5.2; Islam §5.1): a 2D water
 // column of width a and height 2a released onto a dry bed. The surge front
 // x/a against T = t √(2g/a) is compared with Martin & Moyce (1952),
-// ../shared/reference/martin_moyce_1952_surge.csv (every series, T ≤ 3).
+// validation/reference/martin_moyce_1952_surge.csv (every series, T ≤ 3).
 #include "sph_cases.hpp"
 
 #include "../simulation.hpp"
@@ -169,76 +169,6 @@ namespace {
 
 using namespace plab;
 using namespace plab::cases;
-
-PLAB_VALIDATION_CASE("dam_break",
-                     "thesis 5.2: 2D dam break, surge front x/a vs T = t sqrt(2g/a) against Martin & Moyce (1952), "
-                     "T <= 3; resolution and h/dp study",
-                     [](bool quick) {
-    // the aim, 5 %: on a/dp = 40 (full; the thesis's finest run, Table 3, is
-    // dp 4 mm for a 0.146 m column, a/dp 36.5), on a/dp = 10 (quick, in CI)
-    CaseResult result{0, 0.05, "mean relative error of x/a against Martin & Moyce (all series, T <= 3)", ""};
-    std::vector<DamBreakSpec> runs;
-    if (quick) {
-        runs.push_back({0.01, 1.3});
-    } else {
-        for (double dp : {0.01, 0.005, 0.0025}) runs.push_back({dp, 1.3});
-        for (double hdp : {1.0, 1.5}) runs.push_back({0.005, hdp});
-        runs.push_back({0.005, 1.3, 0.02});  // the low-viscosity reading, for comparison
-        DamBreakSpec before;                 // free-slip-like walls without δ-SPH, as before no-slip
-        before.spacing = 0.0025;
-        before.delta = 0;
-        before.no_slip = false;
-        runs.push_back(before);
-        for (double dp : {0.01, 0.005, 0.0025}) {  // the options: XSPH (eq. 18), the eq. 9 density filter
-            DamBreakSpec xsph;
-            xsph.spacing = dp;
-            xsph.xsph = 0.5;
-            runs.push_back(xsph);
-            DamBreakSpec shepard;
-            shepard.spacing = dp;
-            shepard.density = 2;
-            runs.push_back(shepard);
-        }
-        // Convergence, not judged: the front leads Martin & Moyce more as dp
-        // shrinks (Monaghan's viscosity, alpha c0 h / 8, vanishes with h), so
-        // the aim is met by numerical dissipation at a/dp <= 20 and missed
-        // beyond; docs/sph.md has the numbers and the experiment's delay.
-        runs.push_back({0.00125, 1.3});
-    }
-    char line[400];
-    Plot plot{"dam break: surge front", "T = t sqrt(2g/a)", "front x/a", {}};
-    for (const DamBreakSpec& s : runs) {
-        const DamBreakResult r = dam_break(s);
-        Curve front;
-        std::snprintf(line, sizeof line, "a/dp %.0f, h/dp %.2f, alpha %.2f%s%s%s", column_width / s.spacing, s.h_over_dp,
-                      s.alpha, s.no_slip ? "" : ", own-velocity walls", s.xsph > 0 ? ", XSPH" : "",
-                      s.density == 2 ? ", eq. 9" : "");
-        front.label = line;
-        for (std::size_t k = 0; k < r.T.size(); k += std::max<std::size_t>(1, r.T.size() / 400)) {
-            front.x.push_back(r.T[k]);
-            front.y.push_back(r.Z[k]);
-        }
-        plot.curves.push_back(std::move(front));
-        std::snprintf(line, sizeof line,
-                      "    dp %.4f m (a/dp %.0f), h/dp %.2f, alpha %.2f, delta %.2f, %s walls%s%s: %ld fluid balls, "
-                      "%ld steps, cpu %.1f s; front error mean %.2f %%, max %.2f %%; disorder %.3f\n",
-                      s.spacing, column_width / s.spacing, s.h_over_dp, s.alpha, s.delta, s.no_slip ? "no-slip" : "own-velocity",
-                      s.xsph > 0 ? ", XSPH 0.5" : "", s.density == 2 ? ", eq. 9 filter" : "", r.fluid, r.steps,
-                      r.cpu_seconds, 100 * r.mean_error, 100 * r.max_error, r.disorder);
-        result.details += line;
-        // the verdict: the finest run at h/dp 1.3 with the defaults (the quick run has only one)
-        const bool defaults = s.alpha == 0.1 && s.no_slip && s.xsph == 0 && s.density == 0;
-        if (quick || (s.spacing == 0.0025 && s.h_over_dp == 1.3 && defaults)) result.error = r.mean_error;
-    }
-    Curve reference{"Martin & Moyce (1952)", {}, {}, true, result.tolerance};
-    for (const auto& [T, Z] : martin_moyce(runs.front().end_T)) {
-        reference.x.push_back(T);
-        reference.y.push_back(Z);
-    }
-    plot.curves.push_back(std::move(reference));
-    result.plots.push_back(std::move(plot));
-    return result;
-});
 
 } // namespace
 

@@ -198,6 +198,7 @@ public:
     int field_index(const std::string& name) const;
     int register_field(const std::string& name, double default_value);
     std::vector<double>& field(int index) { return fields_[index]; }
+    const std::vector<double>& field(int index) const { return fields_[index]; }
     const std::vector<std::string>& field_names() const { return field_names_; }
     // False for a field that only a skipped rates stage would fill (no pass
     // or model reads it, rates_stage_needed): it holds zeros, so outputs

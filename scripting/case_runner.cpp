@@ -1,0 +1,236 @@
+// Validation cases as data (docs/validation.md): validation/<case>/case.json
+// names the case's scene(s), its runs (a label and --set overrides, in the
+// quick and/or the full version), the checks that judge them (the first that
+// applies is the headline figure; every one must pass) and the plots.
+// This one runner serves every such case: it runs each scene as `plab run`
+// does, takes the figures from the scene's own `metrics`, and judges them.
+#include "metrics.hpp"
+#include "validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace plab {
+
+namespace {
+
+// What one run of a case leaves for its checks, details and plots.
+struct RunRecord {
+    std::string label;
+    json metrics = json::array();
+    std::vector<std::string> columns;
+    std::vector<std::vector<double>> rows;
+    std::size_t bodies = 0;
+    std::uint64_t steps = 0;
+    double cpu = 0;
+    std::string stopped;  // why the run stopped early, if it did
+
+    std::vector<double> column(const Node& where, const std::string& name) const {
+        const auto it = std::find(columns.begin(), columns.end(), name);
+        if (it == columns.end()) where.fail("run \"" + label + "\" records no history \"" + name + "\"");
+        std::vector<double> out;
+        for (const auto& r : rows) out.push_back(r[std::size_t(it - columns.begin())]);
+        return out;
+    }
+    const json* metric(const std::string& name) const {
+        for (const json& m : metrics)
+            if (m.value("name", "") == name) return &m;
+        return nullptr;
+    }
+};
+
+bool in_mode(const Node& n, bool quick) {
+    if (!n.has("in")) return true;
+    const Node in = n.at("in");
+    in.expect_array();
+    for (std::size_t k = 0; k < in.size(); ++k)
+        if (in.at(k).choice({"quick", "full"}) == (quick ? "quick" : "full")) return true;
+    return false;
+}
+
+RunRecord run_one(const fs::path& dir, const Node& run) {
+    run.allow_keys({"label", "scene", "set", "in"});
+    RunRecord rec;
+    rec.label = run.at("label").string();
+    const fs::path scene_path = dir / run.string_or("scene", "scene.json");
+    json scene = read_scene_file(scene_path.string());
+    if (run.has("set")) {
+        run.at("set").expect_object();
+        for (const auto& [path, value] : run.at("set").value().items())
+            apply_override(scene, path + "=" + (value.is_string() ? value.get<std::string>() : value.dump()));
+    }
+    scene.erase("output");  // a case writes no files of its own; the report has its plots
+    const std::clock_t c0 = std::clock();
+    Simulation sim(scene, dir.string());
+    sim.set_quiet(true);
+    try {
+        sim.run();
+    } catch (const std::exception& e) {
+        rec.stopped = e.what();
+    }
+    rec.cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+    rec.bodies = sim.world().bodies.size();
+    rec.steps = sim.world().step_count;
+    for (const auto& c : sim.history_columns()) rec.columns.push_back(c.name);
+    rec.rows = sim.history_rows();
+    const json summary = sim.summary();
+    if (summary.contains("metrics")) rec.metrics = summary["metrics"];
+    return rec;
+}
+
+const RunRecord& find_run(const Node& where, const std::vector<RunRecord>& runs, const std::string& label) {
+    for (const RunRecord& r : runs)
+        if (r.label == label) return r;
+    where.fail("no run labelled \"" + label + "\" in this version of the case");
+}
+
+// Linear interpolation of (xs, ys) at x; NaN outside the samples.
+double at(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
+    const auto it = std::lower_bound(xs.begin(), xs.end(), x);
+    if (it == xs.end() || (it == xs.begin() && *it > x)) return std::nan("");
+    const std::size_t k = std::size_t(it - xs.begin());
+    if (k == 0 || xs[k] == x) return ys[k];
+    return ys[k - 1] + (x - xs[k - 1]) / (xs[k] - xs[k - 1]) * (ys[k] - ys[k - 1]);
+}
+
+// Two runs' histories against each other: |y_a - y_b| / |y_b| at run b's
+// samples inside [from, to]; "norm" mean (default) or max.
+double compare_runs(const Node& c, const std::vector<RunRecord>& runs) {
+    const Node pair = c.at("compare");
+    pair.expect_array();
+    if (pair.size() != 2) pair.fail("compare names two runs: [\"run a\", \"run b\"] (b is the reference)");
+    const RunRecord &a = find_run(pair.at(0), runs, pair.at(0).string()), &b = find_run(pair.at(1), runs, pair.at(1).string());
+    const std::string y = c.at("history").string(), x = c.string_or("x", "time");
+    const std::vector<double> xa = a.column(c, x), ya = a.column(c, y), xb = b.column(c, x), yb = b.column(c, y);
+    const double from = c.number_or("from", -kInf), to = c.number_or("to", kInf);
+    const bool max = c.has("norm") && c.at("norm").choice({"mean", "max"}) == "max";
+    double sum = 0, worst = 0;
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < xb.size(); ++k) {
+        if (xb[k] < from || xb[k] > to || yb[k] == 0) continue;
+        const double v = at(xa, ya, xb[k]);
+        if (std::isnan(v)) continue;
+        const double e = std::fabs(v - yb[k]) / std::fabs(yb[k]);
+        sum += e;
+        worst = std::max(worst, e);
+        ++n;
+    }
+    if (n == 0) return std::nan("");
+    return max ? worst : sum / double(n);
+}
+
+double check_error(const Node& c, const std::vector<RunRecord>& runs) {
+    if (c.has("compare")) return compare_runs(c, runs);
+    const RunRecord& r = find_run(c.at("run"), runs, c.at("run").string());
+    const std::string name = c.at("metric").string();
+    const json* m = r.metric(name);
+    if (!m) c.at("metric").fail("run \"" + r.label + "\" has no metric \"" + name + "\" (its scene's \"metrics\")");
+    const json& e = (*m)[c.string_or("field", "error")];
+    return e.is_number() ? e.get<double>() : std::nan("");
+}
+
+std::string run_line(const RunRecord& r) {
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "    %s: %zu bodies, %llu steps, cpu %.1f s", r.label.c_str(), r.bodies,
+                  static_cast<unsigned long long>(r.steps), r.cpu);
+    std::string s = buf;
+    for (const json& m : r.metrics) {
+        const double e = m.contains("error") && m["error"].is_number() ? m["error"].get<double>() : std::nan("");
+        std::snprintf(buf, sizeof buf, "; %s %.4g", m.value("name", "?").c_str(), e);
+        s += buf;
+        if (m.contains("value") && m["value"].is_number()) {
+            std::snprintf(buf, sizeof buf, " (value %.5g, reference %.5g)", m["value"].get<double>(),
+                          m.value("reference", std::nan("")));
+            s += buf;
+        }
+    }
+    if (!r.stopped.empty()) s += "; stopped: " + r.stopped;
+    return s + "\n";
+}
+
+Plot make_plot(const Node& p, const std::vector<RunRecord>& runs, const fs::path& dir) {
+    p.allow_keys({"title", "x", "y", "x_label", "y_label", "runs", "reference"});
+    Plot plot{p.at("title").string(), p.string_or("x_label", p.at("x").string()), p.string_or("y_label", p.at("y").string()), {}};
+    for (const RunRecord& r : runs) {
+        if (p.has("runs")) {
+            const auto& names = p.at("runs").value();
+            if (std::find(names.begin(), names.end(), json(r.label)) == names.end()) continue;
+        }
+        const std::vector<double> x = r.column(p, p.at("x").string()), y = r.column(p, p.at("y").string());
+        Curve c{r.label, {}, {}};
+        for (std::size_t k = 0; k < x.size(); k += std::max<std::size_t>(1, x.size() / 400)) {
+            c.x.push_back(x[k]);
+            c.y.push_back(y[k]);
+        }
+        plot.curves.push_back(std::move(c));
+    }
+    if (p.has("reference")) {
+        const Node ref = p.at("reference");
+        json curve = ref.value();
+        const std::string label = ref.string_or("label", ref.at("file").string());
+        curve.erase("label");
+        Curve c{label, {}, {}, true};
+        for (const auto& [x, y] : reference_curve(Node(curve, ref.path()), dir.string())) {
+            c.x.push_back(x);
+            c.y.push_back(y);
+        }
+        plot.curves.push_back(std::move(c));
+    }
+    return plot;
+}
+
+CaseResult run_case(const fs::path& dir, const json& spec, bool quick) {
+    const Node root(spec, (dir / "case.json").string());
+    std::vector<RunRecord> runs;
+    const Node rn = root.at("runs");
+    rn.expect_array();
+    for (std::size_t k = 0; k < rn.size(); ++k)
+        if (in_mode(rn.at(k), quick)) runs.push_back(run_one(dir, rn.at(k)));
+    CaseResult result;
+    for (const RunRecord& r : runs) result.details += run_line(r);
+    const Node cn = root.at("checks");
+    cn.expect_array();
+    bool headline = false;
+    for (std::size_t k = 0; k < cn.size(); ++k) {
+        const Node c = cn.at(k);
+        c.allow_keys({"name", "run", "metric", "field", "compare", "history", "x", "from", "to", "norm", "tolerance", "in"});
+        if (!in_mode(c, quick)) continue;
+        const double e = check_error(c, runs), tol = c.at("tolerance").number(0, kInf);
+        const bool pass = e <= tol;  // NaN fails
+        if (!headline) { result.error = e; result.tolerance = tol; result.metric = c.at("name").string(); headline = true; }
+        result.failed_checks += !pass;
+        char buf[512];
+        std::snprintf(buf, sizeof buf, "    check %s: %.4g (tolerance %.4g) %s\n", c.at("name").string().c_str(), e, tol,
+                      pass ? "PASS" : "FAIL");
+        result.details += buf;
+    }
+    if (!headline) root.at("checks").fail("no check applies to the " + std::string(quick ? "quick" : "full") + " version");
+    if (root.has("plots"))
+        for (std::size_t k = 0; k < root.at("plots").size(); ++k) result.plots.push_back(make_plot(root.at("plots").at(k), runs, dir));
+    if (root.has("note")) result.details += "    " + root.at("note").string() + "\n";
+    return result;
+}
+
+} // namespace
+
+void register_data_cases(const std::string& folder) {
+    std::error_code ec;
+    std::vector<fs::path> dirs;
+    for (const auto& e : fs::directory_iterator(folder, ec))
+        if (fs::exists(e.path() / "case.json")) dirs.push_back(e.path());
+    std::sort(dirs.begin(), dirs.end());
+    for (const fs::path& dir : dirs) {
+        const json spec = read_scene_file((dir / "case.json").string());
+        const Node root(spec, (dir / "case.json").string());
+        root.allow_keys({"description", "runs", "checks", "plots", "note"});
+        register_case({dir.filename().string(), root.at("description").string(),
+                       [dir, spec](bool quick) { return run_case(dir, spec, quick); }});
+    }
+}
+
+} // namespace plab
