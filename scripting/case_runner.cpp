@@ -139,13 +139,18 @@ std::string run_line(const RunRecord& r) {
     std::snprintf(buf, sizeof buf, "    %s: %zu bodies, %llu steps, cpu %.1f s", r.label.c_str(), r.bodies,
                   static_cast<unsigned long long>(r.steps), r.cpu);
     std::string s = buf;
+    const auto number = [](const json& m, const char* key) {
+        return m.contains(key) && m[key].is_number() ? m[key].get<double>() : std::nan("");
+    };
     for (const json& m : r.metrics) {
-        const double e = m.contains("error") && m["error"].is_number() ? m["error"].get<double>() : std::nan("");
-        std::snprintf(buf, sizeof buf, "; %s %.4g", m.value("name", "?").c_str(), e);
-        s += buf;
-        if (m.contains("value") && m["value"].is_number()) {
-            std::snprintf(buf, sizeof buf, " (value %.5g, reference %.5g)", m["value"].get<double>(),
-                          m.value("reference", std::nan("")));
+        const std::string name = m.value("name", "?");
+        if (m.contains("error")) {  // a figure against a reference
+            std::snprintf(buf, sizeof buf, "; %s error %.4g", name.c_str(), number(m, "error"));
+            s += buf;
+            if (m.contains("value"))
+                std::snprintf(buf, sizeof buf, " (%.6g against %.6g)", number(m, "value"), number(m, "reference")), s += buf;
+        } else {
+            std::snprintf(buf, sizeof buf, "; %s %.6g", name.c_str(), number(m, "value"));
             s += buf;
         }
     }
@@ -192,21 +197,26 @@ CaseResult run_case(const fs::path& dir, const json& spec, bool quick) {
     for (std::size_t k = 0; k < rn.size(); ++k)
         if (in_mode(rn.at(k), quick)) runs.push_back(run_one(dir, rn.at(k)));
     CaseResult result;
+    result.judged_by_checks = true;
     for (const RunRecord& r : runs) result.details += run_line(r);
     const Node cn = root.at("checks");
     cn.expect_array();
     bool headline = false;
     for (std::size_t k = 0; k < cn.size(); ++k) {
         const Node c = cn.at(k);
-        c.allow_keys({"name", "run", "metric", "field", "compare", "history", "x", "from", "to", "norm", "tolerance", "in"});
+        c.allow_keys({"name", "run", "metric", "field", "compare", "history", "x", "from", "to", "norm", "tolerance",
+                      "at_least", "in"});
         if (!in_mode(c, quick)) continue;
-        const double e = check_error(c, runs), tol = c.at("tolerance").number(0, kInf);
-        const bool pass = e <= tol;  // NaN fails
-        if (!headline) { result.error = e; result.tolerance = tol; result.metric = c.at("name").string(); headline = true; }
+        const double e = check_error(c, runs);
+        // "tolerance": the figure at most this; "at_least": a bound from below (e.g. a clearance, m)
+        const bool lower = c.has("at_least");
+        const double bound = lower ? c.at("at_least").number() : c.at("tolerance").number(0, kInf);
+        const bool pass = lower ? e >= bound : e <= bound;  // NaN fails
+        if (!headline) { result.error = e; result.tolerance = bound; result.metric = c.at("name").string(); headline = true; }
         result.failed_checks += !pass;
         char buf[512];
-        std::snprintf(buf, sizeof buf, "    check %s: %.4g (tolerance %.4g) %s\n", c.at("name").string().c_str(), e, tol,
-                      pass ? "PASS" : "FAIL");
+        std::snprintf(buf, sizeof buf, "    check %s: %.4g (%s %.4g) %s\n", c.at("name").string().c_str(), e,
+                      lower ? "at least" : "tolerance", bound, pass ? "PASS" : "FAIL");
         result.details += buf;
     }
     if (!headline) root.at("checks").fail("no check applies to the " + std::string(quick ? "quick" : "full") + " version");

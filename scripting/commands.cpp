@@ -1,5 +1,6 @@
 // The command sequence (cycle, solve, set, output) and recorded histories.
 #include "generators.hpp"
+#include "measurements/measurement.hpp"
 #include "metrics.hpp"
 #include "simulation.hpp"
 #include "variables.hpp"
@@ -102,7 +103,7 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
         "time, step, dt, contacts, unbalanced_ratio, bonds.intact, bonds.broken, "
         "energy.<kinetic|strain|body|boundary|slip|dashpot|local_damping|bond_break|balance>, ball.<position|velocity|angular_velocity|force|applied_force>.<x|y|z|magnitude> (with id), "
         "group.<max|min|mean>.<position|velocity|...>.<x|y|z|magnitude> (with group), wall.<force|moment>.<x|y|z> "
-        "(with wall), probe.<field> (with point, radius, group), or an \"expression\" of earlier columns";
+        "(with wall), probe.<field> (with point, radius, group), measure.<name> (with \"with\": {...}), or an \"expression\" of earlier columns";
     if (q == "time") return [](const World& x) { return x.time; };
     if (q == "step") return [](const World& x) { return double(x.step_count); };
     if (q == "dt") return [](const World& x) { return x.last_dt; };
@@ -166,6 +167,16 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
         };
     }
     if (parts[0] == "probe" && parts.size() == 2) return field_probe(n, w, parts[1]);
+    if (parts[0] == "measure" && parts.size() == 2) {
+        const auto it = measurements().find(parts[1]);
+        if (it == measurements().end()) {
+            std::string names;
+            for (const auto& [name, info] : measurements()) names += (names.empty() ? "" : ", ") + name;
+            qn.fail("unknown measurement \"" + parts[1] + "\"; measurements: " + names);
+        }
+        static const json empty = json::object();
+        return it->second.make(n.has("with") ? n.at("with") : Node(empty, n.path() + ".with"), w);
+    }
     qn.fail("unknown quantity \"" + q + "\"; known: " + known);
 }
 
@@ -178,7 +189,7 @@ void Simulation::load_histories(const Node& n) {
     rec.expect_array();
     for (std::size_t i = 0; i < rec.size(); ++i) {
         const Node h = rec.at(i);
-        h.allow_keys({"name", "quantity", "id", "group", "wall", "point", "radius", "expression"});
+        h.allow_keys({"name", "quantity", "id", "group", "wall", "point", "radius", "expression", "with"});
         HistoryColumn col;
         if (h.has("expression")) {
             if (h.has("quantity")) h.fail("a column has a \"quantity\" or an \"expression\", not both");

@@ -125,11 +125,11 @@ json relative_to(json out, double value, double exact) {
     return out;
 }
 
-// A reduction of the history against an exact number.
-json analytical_metric(const Node& m, const Samples& s, json out) {
+// The history reduced to one number ("reduce", default final) times "scale".
+double reduced(const Node& m, const Samples& s) {
     const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "max_abs", "duration"})
                                            : "final";
-    return relative_to(std::move(out), reduce(m, s.h, s.t, op) * m.number_or("scale", 1.0), m.at("analytical").number());
+    return reduce(m, s.h, s.t, op) * m.number_or("scale", 1.0);
 }
 
 // Every sample against an exact solution written in the time `t` (and the
@@ -215,9 +215,12 @@ json one_metric(const Node& m, const Simulation& sim, const std::string& scene_d
         out["note"] = "no sample inside [from, to]: the run ended before the window";
         return out;
     }
-    if (m.has("analytical")) return analytical_metric(m, s, std::move(out));
+    if (m.has("analytical")) return relative_to(std::move(out), reduced(m, s), m.at("analytical").number());
     if (m.has("exact")) return exact_metric(m, s, sim, std::move(out));
-    if (!m.has("reference")) m.fail("a metric needs \"analytical\" (a value), \"exact\" (a formula in t) or \"reference\" (a curve)");
+    if (!m.has("reference")) {  // a figure without a reference: its value only (a check may bound it)
+        out["value"] = reduced(m, s);
+        return out;
+    }
     if (m.has("event")) return event_metric(m, s, scene_dir, std::move(out));
     return curve_metric(m, s, scene_dir, std::move(out));
 }

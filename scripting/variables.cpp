@@ -69,6 +69,7 @@ void evaluate_variables(json& vars, Evaluator& eval) {
     }
     while (!pending.empty()) {
         std::string first_name, first_why;
+        const std::size_t before = pending.size();
         for (auto it = pending.begin(); it != pending.end();) {
             double value = 0;
             std::string why;
@@ -81,7 +82,7 @@ void evaluate_variables(json& vars, Evaluator& eval) {
                 ++it;
             }
         }
-        if (!first_name.empty() && pending.count(first_name))  // no progress in this pass
+        if (pending.size() == before)  // no progress: an unknown name or a cycle
             fail_at("scene.variables." + first_name, pending[first_name],
                     first_why + " (a variable may use the others, but not itself through them)");
     }

@@ -19,44 +19,6 @@ nlohmann::json boundary_block(double x0, double y0, double x1, double y1, double
 // (eq. 8), 2 continuity filtered by the normalised summation (eq. 9).
 nlohmann::json density_passes(int method, int boundary_group);
 
-// Thesis §5.1, Table 1: a 2D tank of fluid at rest under gravity, walls of
-// fixed boundary balls (thesis §2.2.4) at half the fluid spacing, density
-// initialised hydrostatically by the inverse EOS.
-struct StaticTankSpec {
-    int columns = 30, rows = 30;   // fluid particles across and up
-    double spacing = 0.005;        // fluid particle spacing dp, m
-    double h_over_dp = 1.0;        // smoothing length / dp (Table 1: h = dp)
-    int kernel = 0;                // 0 Wendland C2, 1 cubic spline, 2 quintic
-    int boundary_layers = 4;       // layers of boundary balls at dp/2
-    double speed_of_sound = 0;     // m/s; 0: 10 sqrt(2 g H) (thesis: v_max = sqrt(2 g D))
-    double viscosity = 8.9e-4;     // Pa s, Morris laminar (Table 1)
-    double alpha = 0;              // > 0: Monaghan artificial viscosity instead of the laminar one
-    double end_time = 1.0;         // s
-    bool wall_pressure = true;     // boundary pressure extrapolated (Islam eqs. 10-11); false: thesis p = 0
-    int density = 0;               // 0 continuity (eq. 7), 1 summation (eq. 8), 2 continuity + normalised summation (eq. 9)
-    // > 0: the tank accelerates upward at this rate from rest (m/s²), its
-    // boundary balls driven v = a (t + dt/2) at a fixed step; the fluid
-    // should hold p = ρ0 (g + a)(H - y) relative to the tank
-    double tank_acceleration = 0;
-    bool wall_acceleration_term = true;  // sph_wall_pressure's (g - a_w) (Islam eq. 10); false: g only
-};
-
-struct StaticTankResult {
-    // ||p - rho0 g (H - y)|| / ||rho0 g (H - y)|| over the fluid, top two rows
-    // excluded: of the pressures and heights averaged over the last 20 % of
-    // the run (filters the acoustic ringing, period 2H/c0), and at the end
-    double pressure_l2 = 0, pressure_l2_instant = 0;
-    double max_displacement = 0;   // largest fluid-particle displacement from its start, m
-    double min_wall_clearance = 0; // smallest distance of a fluid centre inside the tank walls, m (< 0: crossed)
-    double max_speed = 0;          // largest fluid speed at the end, m/s
-    double cpu_seconds = 0;
-    long steps = 0;
-    int fluid = 0, boundary = 0;
-};
-
-nlohmann::json static_tank_scene(const StaticTankSpec& s);
-StaticTankResult static_tank(const StaticTankSpec& s);
-
 // Thesis §5.2, Islam §5.1: a water column a wide, 2a high, released onto a
 // dry bed in a tank 5a long; the surge front x/a against T = t sqrt(2g/a),
 // compared with Martin & Moyce (1952).
@@ -73,7 +35,7 @@ struct DamBreakSpec {
     double boundary_ratio = 0.5;  // boundary-ball spacing / dp (thesis: 1/2; Islam: 1)
     double depth = 0.04;          // 3D: column thickness between the free-slip side walls, m
     double xsph = 0;              // > 0: XSPH with this epsilon (thesis eq. 18, sph_xsph pass)
-    int density = 0;              // as StaticTankSpec::density (0 continuity, 2 with the eq. 9 filter)
+    int density = 0;              // 0 continuity (eq. 7), 2 continuity filtered by the normalised summation (eq. 9)
 };
 
 struct DamBreakResult {

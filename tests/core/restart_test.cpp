@@ -55,9 +55,8 @@ json pile(int dim = 2) { return settling_scene(dim, dim == 2 ? 150 : 250); }
 // with_options: also XSPH (a pre-drift pass, the drift velocity
 // correction) and the normalised summation density filter
 json tank_scene(bool with_options = false) {
-    json scene = read_scene_file(std::string(PLAB_SOURCE_DIR) + "/examples/sph/static_tank.json");
-    scene.erase("commands");
-    scene.erase("output");
+    json scene = read_scene_file(std::string(PLAB_SOURCE_DIR) + "/validation/static_tank/scene.json");
+    for (const char* k : {"commands", "output", "histories", "metrics"}) scene.erase(k);
     if (with_options) {
         scene["passes"].push_back({{"name", "sph_xsph"}, {"material", "water"}, {"properties", {{"boundary_group", 1}}}});
         scene["passes"].push_back({{"name", "sph_density_summation"}, {"material", "water"},

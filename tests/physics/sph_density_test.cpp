@@ -6,7 +6,7 @@
 #include "simulation.hpp"
 
 #include "../../contact_models/sph/sph_kernels.hpp"
-#include <cases/sph_cases.hpp>
+#include "../support/static_tank.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -96,15 +96,16 @@ TEST_CASE("normalised summation density removes the free-surface deficit of a re
 // held to this: its top rows sit ~25 % below rho0, the Tait pressure there
 // is a tension, and the tank goes unstable at t = 0.19 s (docs/sph.md).
 TEST_CASE("quick static tank keeps the hydrostatic pressure with the normalised summation density filter", "[sph]") {
-    cases::StaticTankSpec s;  // the quick tank of sph_test.cpp
-    s.columns = s.rows = 15;
-    s.spacing = 0.01;
-    s.end_time = 0.3;
-    s.density = 2;
-    const cases::StaticTankResult t = cases::static_tank(s);
+    using namespace testing_support;  // the quick tank of sph_test.cpp
+    json scene = quick_tank_scene();
+    // eq. 9: the continuity density filtered by the normalised summation
+    const json summation = {{"name", "sph_density_summation"}, {"material", "water"},
+                            {"properties", {{"boundary_group", 1}, {"normalised", 1}}}};
+    scene["passes"].insert(scene["passes"].begin() + 2, summation);
+    const TankFigures t = run_tank(scene);
     CHECK(t.pressure_l2 <= 0.04);
-    CHECK(t.max_displacement <= 0.5 * s.spacing);
-    CHECK(t.min_wall_clearance > 0.25 * s.spacing);
+    CHECK(t.max_displacement <= 0.5 * 0.01);
+    CHECK(t.min_clearance > 0.25 * 0.01);
 }
 
 // The pass sums its pairs in chunks of 16 384 contacts, each body adding its

@@ -5,7 +5,7 @@
 #include "simulation.hpp"
 
 #include "../../contact_models/sph/sph_kernels.hpp"
-#include <cases/sph_cases.hpp>
+#include "../support/static_tank.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -130,13 +130,11 @@ TEST_CASE("the `mass` key sets each ball's mass, inertia from that mass", "[sph]
 }
 
 TEST_CASE("quick static tank keeps the hydrostatic pressure and its particles in place", "[sph]") {
-    cases::StaticTankSpec s;  // the quick variant of `plab validate static_tank --quick`
-    s.columns = s.rows = 15;
-    s.spacing = 0.01;
-    s.end_time = 0.3;
-    const cases::StaticTankResult t = cases::static_tank(s);
+    using namespace testing_support;  // the quick variant of `plab validate static_tank --quick`
+    const TankFigures t = run_tank(quick_tank_scene());
+    const double dp = 0.01;
     CHECK(t.fluid == 225);
-    CHECK(t.pressure_l2 <= 0.04);                // time-averaged pressure vs rho0 g (H - y)
-    CHECK(t.max_displacement <= 0.5 * s.spacing);  // the column stays put
-    CHECK(t.min_wall_clearance > 0.25 * s.spacing);  // no particle reaches, let alone crosses, a wall
+    CHECK(t.pressure_l2 <= 0.04);            // time-averaged pressure vs rho0 g (H - y)
+    CHECK(t.max_displacement <= 0.5 * dp);   // the column stays put
+    CHECK(t.min_clearance > 0.25 * dp);      // no particle reaches, let alone crosses, a wall
 }

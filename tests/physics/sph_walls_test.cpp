@@ -6,6 +6,7 @@
 #include "simulation.hpp"
 
 #include <cases/sph_cases.hpp>
+#include "../support/static_tank.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -232,19 +233,16 @@ TEST_CASE("fluid in a tank accelerating upward holds the pressure rho0 (g + a)(H
     // static tank (15 x 15, dp 10 mm, 0.3 s) driven upward at a = 2g: in the
     // tank's frame the fluid stays at rest under g + a. Measured: 3.6 % with
     // the term, 4.6 % without (the wall balls then push with g alone).
-    cases::StaticTankSpec s;
-    s.columns = s.rows = 15;
-    s.spacing = 0.01;
-    s.end_time = 0.3;
-    s.tank_acceleration = 2 * 9.81;
-    const cases::StaticTankResult with = cases::static_tank(s);
-    s.wall_acceleration_term = false;
-    const cases::StaticTankResult without = cases::static_tank(s);
+    using namespace testing_support;
+    const double dp = 0.01;
+    const TankFigures with = run_tank(quick_tank_scene({{"variables.tank_acceleration", 2 * 9.81}}));
+    const TankFigures without = run_tank(quick_tank_scene(
+        {{"variables.tank_acceleration", 2 * 9.81}, {"passes.2.properties.wall_acceleration", 0}}));
     INFO("pressure L2 with the a_w term " << with.pressure_l2 << ", without " << without.pressure_l2
-         << "; clearance " << with.min_wall_clearance << " / " << without.min_wall_clearance
+         << "; clearance " << with.min_clearance << " / " << without.min_clearance
          << "; displacement " << with.max_displacement << " / " << without.max_displacement);
     CHECK(with.pressure_l2 <= 0.04);                   // the static tank's own tolerance
-    CHECK(with.max_displacement <= 0.5 * s.spacing);    // at rest in the tank
-    CHECK(with.min_wall_clearance > 0.25 * s.spacing);
+    CHECK(with.max_displacement <= 0.5 * dp);          // at rest in the tank
+    CHECK(with.min_clearance > 0.25 * dp);
     CHECK(without.pressure_l2 > 1.15 * with.pressure_l2);  // the term is what holds the fluid up
 }

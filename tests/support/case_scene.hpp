@@ -1,0 +1,31 @@
+// The scene of a validation case, for the tests that assert the physics the
+// case measures on a smaller or varied set-up: validation/<case>/<file> with
+// --set overrides (e.g. {"variables.dp", 0.01}).
+#pragma once
+
+#include "simulation.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace plab::testing_support {
+
+inline std::string case_dir(const std::string& name) { return std::string(PLAB_SOURCE_DIR) + "/validation/" + name; }
+
+inline json case_scene(const std::string& name, const std::vector<std::pair<std::string, json>>& sets = {},
+                       const std::string& file = "scene.json") {
+    json scene = read_scene_file(case_dir(name) + "/" + file);
+    for (const auto& [path, value] : sets) apply_override(scene, path + "=" + value.dump());
+    scene.erase("output");
+    return scene;
+}
+
+// The value (or error) of one of the scene's metrics after sim.run().
+inline double metric(const Simulation& sim, const std::string& name, const char* field = "value") {
+    for (const json& m : sim.summary()["metrics"])
+        if (m["name"] == name) return m[field].is_number() ? m[field].get<double>() : std::nan("");
+    throw std::runtime_error("no metric " + name);
+}
+
+} // namespace plab::testing_support
