@@ -31,11 +31,14 @@ double reduce(const Node& n, const std::vector<double>& h, const std::vector<dou
     if (op == "change") return h.back() - h.front();  // a displacement from the first sample
     if (op == "max") return *std::max_element(h.begin(), h.end());
     if (op == "min") return *std::min_element(h.begin(), h.end());
-    if (op == "duration") {  // time between the first and the last nonzero sample (e.g. of a contact count)
-        const auto first = std::find_if(h.begin(), h.end(), [](double v) { return v != 0; });
-        const auto last = std::find_if(h.rbegin(), h.rend(), [](double v) { return v != 0; });
-        if (first == h.end() || t.empty()) return 0.0;
-        return t[std::size_t(h.rend() - last) - 1] - t[std::size_t(first - h.begin())];
+    if (op == "time_below_zero") {  // e.g. a surface gap: how long the first contact lasted, crossings interpolated
+        const auto cross = [&](std::size_t k) { return t[k - 1] + (t[k] - t[k - 1]) * h[k - 1] / (h[k - 1] - h[k]); };
+        std::size_t in = 1;
+        while (in < h.size() && !(h[in] < 0)) ++in;
+        std::size_t out = in + 1;
+        while (out < h.size() && h[out] < 0) ++out;
+        if (out >= h.size() || t.size() < h.size()) return std::nan("");  // never entered, or never left
+        return cross(out) - cross(in);
     }
     if (op == "max_abs") {
         double m = 0;
@@ -127,7 +130,7 @@ json relative_to(json out, double value, double exact) {
 
 // The history reduced to one number ("reduce", default final) times "scale".
 double reduced(const Node& m, const Samples& s) {
-    const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "max_abs", "duration"})
+    const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "max_abs", "time_below_zero"})
                                            : "final";
     return reduce(m, s.h, s.t, op) * m.number_or("scale", 1.0);
 }

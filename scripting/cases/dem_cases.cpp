@@ -200,63 +200,6 @@ std::string line(const char* fmt, double a, double b, double c, double d = 0) {
     return buf;
 }
 
-PLAB_VALIDATION_CASE("free_fall", "single ball under gravity vs x0 + v0 t + g t^2/2 (2D and 3D)", [](bool quick) {
-    CaseResult r{0, 1e-10, "max relative position error", ""};
-    for (int dim : {2, 3}) {
-        const double e = free_fall_error(dim, 1e-3, quick ? 1000 : 10000);
-        r.error = std::max(r.error, e);
-        r.details += line("    %gD: max relative error %.3g\n", dim, e, 0);
-    }
-    return r;
-});
-
-PLAB_VALIDATION_CASE("restitution", "normal impact, linear model: e and contact time vs the damped oscillator", [](bool) {
-    CaseResult r{0, 0.005, "max relative error of e (0.5 %) and of duration/2 (1 % -> same scale)", ""};
-    Plot plot{"restitution of the linear model (2D/3D, ball/wall)", "normal damping ratio beta", "coefficient of restitution e", {}};
-    Curve exact{"exp(-beta pi / sqrt(1 - beta^2))", {}, {}, false, r.tolerance}, measured{"measured", {}, {}, true, 0};
-    for (int k = 0; k <= 60; ++k) {
-        const double beta = 0.6 * k / 60;
-        exact.x.push_back(beta);
-        exact.y.push_back(std::exp(-beta * M_PI / std::sqrt(1 - beta * beta)));
-    }
-    for (int dim : {2, 3})
-        for (bool wall : {false, true})
-            for (double beta : {0.0, 0.05, 0.2, 0.5}) {
-                const Impact im = normal_impact(dim, wall, beta);
-                measured.x.push_back(beta);
-                measured.y.push_back(im.restitution);
-                const double ee = std::fabs(im.restitution - im.expected_restitution) / im.expected_restitution;
-                const double ed = std::fabs(im.duration - im.expected_duration) / im.expected_duration;
-                r.error = std::max({r.error, ee, ed / 2});
-                char buf[200];
-                std::snprintf(buf, sizeof buf, "    %dD %-4s beta %.2f: e %.5f (exact %.5f, err %.2e)  t_c err %.2e\n", dim,
-                              wall ? "wall" : "ball", beta, im.restitution, im.expected_restitution, ee, ed);
-                r.details += buf;
-            }
-    for (double beta : {0.2, 0.5}) {
-        const Impact im = normal_impact(2, true, beta, 2);
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "    no-tension mode (dp_mode 2), beta %.2f: e %.4f vs formula %.4f\n", beta,
-                      im.restitution, im.expected_restitution);
-        r.details += buf;
-    }
-    plot.curves = {exact, measured};
-    r.plots.push_back(std::move(plot));
-    return r;
-});
-
-PLAB_VALIDATION_CASE("rolling", "sliding disc/sphere ends rolling at 2/3 and 5/7 of the launch speed", [](bool) {
-    CaseResult r{0, 0.01, "relative error of the final rolling speed", ""};
-    const double exact[2] = {2.0 / 3.0, 5.0 / 7.0};
-    for (int dim : {2, 3}) {
-        const double ratio = rolling_speed_ratio(dim);
-        const double e = std::fabs(ratio - exact[dim - 2]) / exact[dim - 2];
-        r.error = std::max(r.error, e);
-        r.details += line("    %gD: v_final/v0 = %.5f (exact %.5f)\n", dim, ratio, exact[dim - 2]);
-    }
-    return r;
-});
-
 PLAB_VALIDATION_CASE("energy_conservation",
                      "elastic balls in a box, no damping or friction: no secular energy drift with persistent "
                      "contacts; second-order fall of the leapfrog error with dt",

@@ -1,15 +1,43 @@
 // Physics of the kernel + linear model against analytical solutions
 // (issue: kernel, acceptance 1–4). Same measurements as `plab validate`.
 #include <cases/dem_cases.hpp>
+#include "../support/case_scene.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
-using namespace plab::cases;
+using plab::cases::energy_drift;
+using plab::cases::EnergyRecord;
+
+namespace {
+
+using plab::json;
+using namespace plab::testing_support;
+
+std::string dim_file(const char* stem, int dim, const char* tail = "") {
+    return std::string(stem) + "_" + std::to_string(dim) + "d" + tail + ".json";
+}
+
+// validation/restitution: e and the contact time of one impact, and their exact values
+struct Impact {
+    double restitution, duration, expected_restitution, expected_duration;
+};
+Impact normal_impact(int dim, bool on_wall, double beta, int dp_mode = 0) {
+    const auto sim = run_scene(case_scene("restitution", {{"variables.beta", beta}, {"variables.dp_mode", dp_mode}},
+                                          dim_file("scene", dim, on_wall ? "_wall" : "_ball")));
+    return {metric(*sim, "restitution"), metric(*sim, "contact_time"), sim->scene()["variables"]["restitution"].get<double>(),
+            sim->scene()["variables"]["contact_time"].get<double>()};
+}
+
+} // namespace
 
 TEST_CASE("leapfrog free fall matches x0 + v0 t + g t^2/2 to 1e-10 relative", "[physics]") {
-    for (int dim : {2, 3}) CHECK(free_fall_error(dim, 1e-3, 2000) < 1e-10);
+    for (int dim : {2, 3}) {
+        const auto sim = run_scene(case_scene("free_fall", {{"variables.steps", 2000}}, dim_file("scene", dim)));
+        CHECK(metric(*sim, "position", "error") < 1e-10);
+        CHECK(sim->world().step_count == 2000);
+    }
 }
 
 TEST_CASE("normal impact: restitution within 0.5 % and contact time within 1 % of the damped oscillator",
@@ -33,8 +61,8 @@ TEST_CASE("no-tension dashpot mode gives a higher restitution than the full-dash
 }
 
 TEST_CASE("a sliding disc ends rolling at 2/3 and a sphere at 5/7 of the launch speed", "[physics]") {
-    CHECK(rolling_speed_ratio(2) == Approx(2.0 / 3.0).epsilon(0.01));
-    CHECK(rolling_speed_ratio(3) == Approx(5.0 / 7.0).epsilon(0.01));
+    CHECK(metric(*run_scene(case_scene("rolling", {}, "scene_2d.json")), "rolling_speed") == Approx(2.0 / 3.0).epsilon(0.01));
+    CHECK(metric(*run_scene(case_scene("rolling", {}, "scene_3d.json")), "rolling_speed") == Approx(5.0 / 7.0).epsilon(0.01));
 }
 
 TEST_CASE("elastic packed balls conserve energy and the leapfrog error is second order", "[physics]") {

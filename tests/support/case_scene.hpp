@@ -5,6 +5,9 @@
 
 #include "simulation.hpp"
 
+#include <cmath>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,9 +24,18 @@ inline json case_scene(const std::string& name, const std::vector<std::pair<std:
     return scene;
 }
 
+// The scene run to its end (its commands), quiet.
+inline std::unique_ptr<Simulation> run_scene(const json& scene) {
+    auto sim = std::make_unique<Simulation>(scene);
+    sim->set_quiet(true);
+    sim->run();
+    return sim;
+}
+
 // The value (or error) of one of the scene's metrics after sim.run().
 inline double metric(const Simulation& sim, const std::string& name, const char* field = "value") {
-    for (const json& m : sim.summary()["metrics"])
+    const json summary = sim.summary();
+    for (const json& m : summary["metrics"])
         if (m["name"] == name) return m[field].is_number() ? m[field].get<double>() : std::nan("");
     throw std::runtime_error("no metric " + name);
 }
