@@ -99,8 +99,9 @@ double at(const std::vector<double>& xs, const std::vector<double>& ys, double x
 }
 
 // Two runs' histories against each other: |y_a - y_b| / |y_b| at run b's
-// samples inside [from, to]; "norm" mean (default) or max.
-double compare_runs(const Node& c, const std::vector<RunRecord>& runs) {
+// samples (or at the x of the reference curve \"at\") inside [from, to];
+// "norm" mean (default) or max.
+double compare_runs(const Node& c, const std::vector<RunRecord>& runs, const fs::path& dir) {
     const Node pair = c.at("compare");
     pair.expect_array();
     if (pair.size() != 2) pair.fail("compare names two runs: [\"run a\", \"run b\"] (b is the reference)");
@@ -109,13 +110,18 @@ double compare_runs(const Node& c, const std::vector<RunRecord>& runs) {
     const std::vector<double> xa = a.column(c, x), ya = a.column(c, y), xb = b.column(c, x), yb = b.column(c, y);
     const double from = c.number_or("from", -kInf), to = c.number_or("to", kInf);
     const bool max = c.has("norm") && c.at("norm").choice({"mean", "max"}) == "max";
+    // where to compare: b's samples, or the x of a reference curve ("at")
+    std::vector<double> xs = xb;
+    if (c.has("at")) {
+        xs.clear();
+        for (const auto& point : reference_curve(c.at("at"), dir.string())) xs.push_back(point.first);
+    }
     double sum = 0, worst = 0;
     std::size_t n = 0;
-    for (std::size_t k = 0; k < xb.size(); ++k) {
-        if (xb[k] < from || xb[k] > to || yb[k] == 0) continue;
-        const double v = at(xa, ya, xb[k]);
-        if (std::isnan(v)) continue;
-        const double e = std::fabs(v - yb[k]) / std::fabs(yb[k]);
+    for (const double x : xs) {
+        const double va = at(xa, ya, x), vb = at(xb, yb, x);
+        if (x < from || x > to || std::isnan(va) || std::isnan(vb) || vb == 0) continue;
+        const double e = std::fabs(va - vb) / std::fabs(vb);
         sum += e;
         worst = std::max(worst, e);
         ++n;
@@ -134,8 +140,8 @@ double metric_of(const Node& c, const RunRecord& r) {
 
 // A run's metric, or the largest over a list of runs ("run": ["2D", "3D"]);
 // or two runs compared.
-double check_error(const Node& c, const std::vector<RunRecord>& runs) {
-    if (c.has("compare")) return compare_runs(c, runs);
+double check_error(const Node& c, const std::vector<RunRecord>& runs, const fs::path& dir) {
+    if (c.has("compare")) return compare_runs(c, runs, dir);
     const Node rn = c.at("run");
     if (!rn.value().is_array()) return metric_of(c, find_run(rn, runs, rn.string()));
     double worst = -kInf;
@@ -217,10 +223,10 @@ CaseResult run_case(const fs::path& dir, const json& spec, bool quick) {
     bool headline = false;
     for (std::size_t k = 0; k < cn.size(); ++k) {
         const Node c = cn.at(k);
-        c.allow_keys({"name", "run", "metric", "field", "compare", "history", "x", "from", "to", "norm", "tolerance",
+        c.allow_keys({"name", "run", "metric", "field", "compare", "history", "x", "at", "from", "to", "norm", "tolerance",
                       "at_least", "in"});
         if (!in_mode(c, quick)) continue;
-        const double e = check_error(c, runs);
+        const double e = check_error(c, runs, dir);
         // "tolerance": the figure at most this; "at_least": a bound from below (e.g. a clearance, m)
         const bool lower = c.has("at_least");
         const double bound = lower ? c.at("at_least").number() : c.at("tolerance").number(0, kInf);

@@ -215,8 +215,8 @@ void Simulation::load_output(const Node& n) {
 }
 
 std::function<void(World&)> Simulation::load_set(const Node& n) {
-    n.allow_keys({"group", "id", "region", "wall", "velocity", "angular_velocity", "fix", "free", "applied_force",
-                  "local_damping", "viscous_damping", "gravity"});
+    n.allow_keys({"group", "id", "region", "wall", "velocity", "angular_velocity", "random_velocity", "fix", "free",
+                  "applied_force", "local_damping", "viscous_damping", "gravity"});
     const int dim = world_->dim;
     std::vector<std::function<void(World&)>> actions;
     if (n.has("gravity")) {
@@ -252,6 +252,19 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
             if (dim == 2) om.z() = n.at("angular_velocity").number();
             else om = n.at("angular_velocity").vec(3);
             on_balls.push_back([om](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.angular_velocity[i] = om; });
+        }
+        if (n.has("random_velocity")) {  // as LAMMPS's `velocity create`: each component uniform in [-a, a], seeded
+            const Node rv = n.at("random_velocity");
+            rv.allow_keys({"amplitude", "seed"});
+            const double a = rv.at("amplitude").number(0.0, kInf, false, true);
+            const std::uint64_t seed = std::uint64_t(rv.at("seed").integer(0, 1L << 62));
+            on_balls.push_back([a, seed, dim](World& w, const std::vector<int>& sel) {
+                Rng rng(seed);
+                for (int i : sel) {
+                    w.bodies.velocity[i].setZero();
+                    for (int c = 0; c < dim; ++c) w.bodies.velocity[i][c] = rng.uniform(-a, a);
+                }
+            });
         }
         if (n.has("fix")) {
             const std::uint8_t f = read_fixity(n.at("fix"));
@@ -355,7 +368,7 @@ void Simulation::load_commands(const Node& n) {
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node c = n.at(i);
         c.expect_object();
-        if (c.size() != 1) c.fail("a command is an object with one key: cycle, solve, set, bond or output");
+        if (c.size() != 1) c.fail("a command is an object with one key: cycle, solve, set, bond, histories or output");
         Command cmd{Command::cycle, c.path()};
         if (c.has("cycle")) {
             cmd.value = double(c.at("cycle").integer(0, 1L << 50));
@@ -376,6 +389,18 @@ void Simulation::load_commands(const Node& n) {
         } else if (c.has("set")) {
             cmd.kind = Command::set;
             cmd.apply = load_set(c.at("set"));
+        } else if (c.has("histories")) {
+            // PFC's `history purge`: the rows so far are dropped and a first
+            // row is taken at this state (forces and energies evaluated anew),
+            // so a case's metrics see only what follows
+            cmd.kind = Command::set;
+            c.at("histories").choice({"clear"});
+            cmd.apply = [this](World& w) {
+                w.mark_dirty();
+                w.prepare();
+                history_rows_.clear();
+                if (!history_cols_.empty()) history_rows_.push_back(sample_history_row());
+            };
         } else if (c.has("output")) {
             cmd.kind = Command::output;
             c.at("output").choice({"vtk"});
@@ -383,7 +408,7 @@ void Simulation::load_commands(const Node& n) {
             cmd.kind = Command::set;
             cmd.apply = load_bond(c.at("bond"));
         } else {
-            c.fail("unknown command \"" + c.value().begin().key() + "\"; commands: cycle, solve, set, bond, output");
+            c.fail("unknown command \"" + c.value().begin().key() + "\"; commands: cycle, solve, set, bond, histories, output");
         }
         commands_.push_back(std::move(cmd));
     }

@@ -40,6 +40,23 @@ double reduce(const Node& n, const std::vector<double>& h, const std::vector<dou
         if (out >= h.size() || t.size() < h.size()) return std::nan("");  // never entered, or never left
         return cross(out) - cross(in);
     }
+    // conservation of a quantity from its first sample h[0] (the reference
+    // state): the secular change, mean of the last tenth of the samples after
+    // it minus the first tenth; the largest excursion from it
+    if (op == "drift" || op == "max_deviation") {
+        const std::size_t n = h.size() - 1;
+        if (n == 0) return 0.0;
+        if (op == "max_deviation") {
+            double m = 0;
+            for (std::size_t k = 1; k <= n; ++k) m = std::max(m, std::fabs(h[k] - h[0]));
+            return m;
+        }
+        const std::size_t window = std::max<std::size_t>(1, n / 10);
+        double first = 0, last = 0;
+        for (std::size_t k = 1; k <= window; ++k) first += h[k];
+        for (std::size_t k = n - window + 1; k <= n; ++k) last += h[k];
+        return std::fabs(last - first) / double(window);
+    }
     if (op == "max_abs") {
         double m = 0;
         for (double v : h) m = std::max(m, std::fabs(v));
@@ -128,11 +145,28 @@ json relative_to(json out, double value, double exact) {
     return out;
 }
 
-// The history reduced to one number ("reduce", default final) times "scale".
-double reduced(const Node& m, const Samples& s) {
-    const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "max_abs", "time_below_zero"})
+// The recorded column `name`; an error at `where` when there is none.
+std::vector<double> named_history(const Node& where, const std::string& name, const Simulation& sim) {
+    try {
+        return sim.history(name);
+    } catch (const InputError&) {
+        where.fail("no history named \"" + name + "\" in scene.histories.record");
+    }
+}
+
+// The history reduced to one number ("reduce", default final) times
+// "scale", over |the first sample of the history "relative_to"| if given
+// (e.g. an energy drift over the initial kinetic energy).
+double reduced(const Node& m, const Samples& s, const Simulation& sim) {
+    const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "max_abs",
+                                                                    "time_below_zero", "drift", "max_deviation"})
                                            : "final";
-    return reduce(m, s.h, s.t, op) * m.number_or("scale", 1.0);
+    double value = reduce(m, s.h, s.t, op) * m.number_or("scale", 1.0);
+    if (m.has("relative_to")) {
+        const std::vector<double> base = named_history(m.at("relative_to"), m.at("relative_to").string(), sim);
+        value /= std::fabs(base.empty() ? std::nan("") : base.front());
+    }
+    return value;
 }
 
 // Every sample against an exact solution written in the time `t` (and the
@@ -197,17 +231,8 @@ json curve_metric(const Node& m, const Samples& s, const std::string& scene_dir,
     return out;
 }
 
-// The recorded column `name`; an error at `where` when there is none.
-std::vector<double> named_history(const Node& where, const std::string& name, const Simulation& sim) {
-    try {
-        return sim.history(name);
-    } catch (const InputError&) {
-        where.fail("no history named \"" + name + "\" in scene.histories.record");
-    }
-}
-
 json one_metric(const Node& m, const Simulation& sim, const std::string& scene_dir) {
-    m.allow_keys({"name", "history", "reduce", "scale", "analytical", "exact", "norm", "event", "from", "to",
+    m.allow_keys({"name", "history", "reduce", "scale", "relative_to", "analytical", "exact", "norm", "event", "from", "to",
                   "time_history", "x_scale", "y_scale", "reference"});
     json out = {{"name", m.at("name").string()}};
     const std::vector<double> h = named_history(m.at("history"), m.at("history").string(), sim);
@@ -218,10 +243,10 @@ json one_metric(const Node& m, const Simulation& sim, const std::string& scene_d
         out["note"] = "no sample inside [from, to]: the run ended before the window";
         return out;
     }
-    if (m.has("analytical")) return relative_to(std::move(out), reduced(m, s), m.at("analytical").number());
+    if (m.has("analytical")) return relative_to(std::move(out), reduced(m, s, sim), m.at("analytical").number());
     if (m.has("exact")) return exact_metric(m, s, sim, std::move(out));
     if (!m.has("reference")) {  // a figure without a reference: its value only (a check may bound it)
-        out["value"] = reduced(m, s);
+        out["value"] = reduced(m, s, sim);
         return out;
     }
     if (m.has("event")) return event_metric(m, s, scene_dir, std::move(out));

@@ -244,7 +244,7 @@ void Simulation::load_passes(const Node& n) {
 }
 
 void Simulation::load_timestep(const Node& n) {
-    n.allow_keys({"fixed", "safety_factor", "allow_unstable"});
+    n.allow_keys({"fixed", "fixed_fraction", "safety_factor", "allow_unstable"});
     World& w = *world_;
     w.safety_factor = n.number_or("safety_factor", 0.8, 0.0, 1.0, true, false);
     StableStep s;
@@ -253,6 +253,11 @@ void Simulation::load_timestep(const Node& n) {
     } catch (const PluginError& e) {
         throw InputError("scene.contact_models", e.what());
     }
+    if (n.has("fixed") && n.has("fixed_fraction")) n.fail("give \"fixed\" (s) or \"fixed_fraction\" (of the stable step), not both");
+    // a fixed step as a fraction of the nominal stable one (one contact of the
+    // lightest ball of each assigned pair of groups), as LIGGGHTS users give
+    // dt as a fraction of the Rayleigh time
+    if (n.has("fixed_fraction")) w.fixed_dt = n.at("fixed_fraction").number(0.0, 1.0, true, false) * s.critical;
     if (!n.has("fixed")) return;
     w.fixed_dt = n.at("fixed").positive();
     const bool allow = n.has("allow_unstable") && n.at("allow_unstable").boolean();

@@ -1,14 +1,13 @@
 // Physics of the kernel + linear model against analytical solutions
-// (issue: kernel, acceptance 1–4). Same measurements as `plab validate`.
-#include <cases/dem_cases.hpp>
+// (issue: kernel, acceptance 1–4): the validation cases' scenes
+// (validation/free_fall, restitution, rolling, energy_conservation) and
+// their own metrics.
 #include "../support/case_scene.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
-using plab::cases::energy_drift;
-using plab::cases::EnergyRecord;
 
 namespace {
 
@@ -68,10 +67,11 @@ TEST_CASE("a sliding disc ends rolling at 2/3 and a sphere at 5/7 of the launch 
 TEST_CASE("elastic packed balls conserve energy and the leapfrog error is second order", "[physics]") {
     for (int dim : {2, 3}) {
         INFO("dim " << dim);
-        const EnergyRecord coarse = energy_drift(dim, 0.1, 20000, true);
-        const EnergyRecord fine = energy_drift(dim, 0.05, 40000, true);
-        CHECK(coarse.drift < 1e-4);
-        const double ratio = coarse.max_fluctuation / fine.max_fluctuation;
+        const std::string file = dim_file("scene_packed", dim);
+        const auto coarse = run_scene(case_scene("energy_conservation", {{"variables.steps", 20000}}, file));
+        const auto fine = run_scene(case_scene("energy_conservation", {{"variables.steps", 40000}, {"variables.fraction", 0.05}}, file));
+        CHECK(metric(*coarse, "drift") < 1e-4);
+        const double ratio = metric(*coarse, "fluctuation") / metric(*fine, "fluctuation");
         CHECK(ratio > 3.5);
         CHECK(ratio < 4.5);
     }
