@@ -124,7 +124,8 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
     return ys[k - 1] + w * (ys[k] - ys[k - 1]);
 }
 
-// The samples (time, value) whose time (the `time_history`) lies in [from, to].
+// The samples (time, value) whose time (the `time_history`) lies in [from, to]
+// and whose value is a number.
 struct Samples {
     std::vector<double> t, h;
 };
@@ -133,8 +134,8 @@ Samples in_window(const Node& m, const std::vector<double>& t, const std::vector
     if (!(to > from)) m.at("to").fail("the window [from, to] = [" + std::to_string(from) + ", " + std::to_string(to) +
                                       "] is empty; \"to\" must exceed \"from\"");
     Samples out;
-    for (std::size_t k = 0; k < h.size() && k < t.size(); ++k)
-        if (t[k] >= from && t[k] <= to) { out.t.push_back(t[k]); out.h.push_back(h[k]); }
+    for (std::size_t k = 0; k < h.size() && k < t.size(); ++k)  // a NaN sample has no value (a probe with nothing in reach)
+        if (t[k] >= from && t[k] <= to && !std::isnan(h[k])) { out.t.push_back(t[k]); out.h.push_back(h[k]); }
     return out;  // empty when a run stopped before the window: no error figure, not a scene error
 }
 
