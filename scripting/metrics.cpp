@@ -2,13 +2,14 @@
 // run from its recorded histories and written to summary.json, so that
 // `plab sweep` can set error against cost (issue 7). Two kinds:
 //   analytical: a reduction of one history (final, change = final - first,
-//     max, min, mean, max_abs) times `scale`, optionally over the samples
-//     whose time lies in [from, to] (a terminal velocity is the mean over a
-//     plateau), against an exact value: error = |value - exact| / |exact|;
+//     max, min, mean, time_mean, max_abs) times `scale`, optionally over the
+//     samples whose time lies in [from, to] (a terminal velocity is the mean
+//     over a plateau), against an exact value: error = |value - exact| / |exact|;
 //   reference:  a history against a reference curve (a CSV beside
 //     the scene or in validation/reference), both scaled to the reference's
 //     variables: error = mean |sim - ref| / |ref| over the reference points
-//     inside the run (and `x_max`), with the max beside it.
+//     inside the run (and `x_max`), with the max beside it; or their RMS
+//     difference, or how far the run leads ("norm").
 #include "metrics.hpp"
 #include "validation.hpp"
 #include "variables.hpp"
@@ -128,14 +129,17 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
 // and whose value is a number.
 struct Samples {
     std::vector<double> t, h;
+    double t_before = std::nan("");  // time of the last sample before the window (NaN: none)
 };
 Samples in_window(const Node& m, const std::vector<double>& t, const std::vector<double>& h) {
     const double from = m.number_or("from", -kInf), to = m.number_or("to", kInf);
     if (!(to > from)) m.at("to").fail("the window [from, to] = [" + std::to_string(from) + ", " + std::to_string(to) +
                                       "] is empty; \"to\" must exceed \"from\"");
     Samples out;
-    for (std::size_t k = 0; k < h.size() && k < t.size(); ++k)  // a NaN sample has no value (a probe with nothing in reach)
+    for (std::size_t k = 0; k < h.size() && k < t.size(); ++k) {  // a NaN sample has no value (a probe with nothing in reach)
         if (t[k] >= from && t[k] <= to && !std::isnan(h[k])) { out.t.push_back(t[k]); out.h.push_back(h[k]); }
+        if (t[k] < from) out.t_before = t[k];
+    }
     return out;  // empty when a run stopped before the window: no error figure, not a scene error
 }
 
@@ -144,6 +148,21 @@ json relative_to(json out, double value, double exact) {
     out["reference"] = exact;
     out["error"] = exact != 0 ? std::fabs(value - exact) / std::fabs(exact) : std::fabs(value);
     return out;
+}
+
+// The mean over time, each sample standing for the interval since the one
+// before it (that before the window included): the integral of the history
+// over the window's time over that time, as a terminal velocity is averaged
+// over a plateau whatever the steps (NaN for a window of no length).
+double time_mean(const Samples& s) {
+    double sum = 0, span = 0, before = s.t_before;
+    for (std::size_t k = 0; k < s.h.size(); ++k) {
+        const double dt = std::isnan(before) ? 0.0 : s.t[k] - before;
+        sum += s.h[k] * dt;
+        span += dt;
+        before = s.t[k];
+    }
+    return span > 0 ? sum / span : std::nan("");
 }
 
 // The recorded column `name`; an error at `where` when there is none.
@@ -159,10 +178,10 @@ std::vector<double> named_history(const Node& where, const std::string& name, co
 // "scale", over |the first sample of the history "relative_to"| if given
 // (e.g. an energy drift over the initial kinetic energy).
 double reduced(const Node& m, const Samples& s, const Simulation& sim) {
-    const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "max_abs",
+    const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "time_mean", "max_abs",
                                                                     "time_below_zero", "drift", "max_deviation"})
                                            : "final";
-    double value = reduce(m, s.h, s.t, op) * m.number_or("scale", 1.0);
+    double value = (op == "time_mean" ? time_mean(s) : reduce(m, s.h, s.t, op)) * m.number_or("scale", 1.0);
     if (m.has("relative_to")) {
         const std::vector<double> base = named_history(m.at("relative_to"), m.at("relative_to").string(), sim);
         value /= std::fabs(base.empty() ? std::nan("") : base.front());
@@ -209,25 +228,38 @@ json event_metric(const Node& m, const Samples& s, const std::string& scene_dir,
     return out;
 }
 
-// The history against a reference curve: mean (and max) relative error over
-// the reference points inside the run.
+// The history against a reference curve at the reference points inside the
+// run. "norm": mean (default) of |sim - ref| / |ref|, with the max beside
+// it; "rms", the root mean square of sim - ref in the reference's units (a
+// curve through zero, e.g. a velocity from rest); "lead", the largest
+// (sim - ref) / |ref|, 0 when the run never leads (a front bounded from
+// above by a faster one).
 json curve_metric(const Node& m, const Samples& s, const std::string& scene_dir, json out) {
     const double xs = m.number_or("x_scale", 1.0), ys = m.number_or("y_scale", 1.0);
+    const std::string norm = m.has("norm") ? m.at("norm").choice({"mean", "rms", "lead"}) : "mean";
     std::vector<double> x(s.t.size()), y(s.h.size());
     for (std::size_t k = 0; k < s.t.size(); ++k) x[k] = s.t[k] * xs;
     for (std::size_t k = 0; k < s.h.size(); ++k) y[k] = s.h[k] * ys;
-    double sum = 0, worst = 0;
-    std::size_t n = 0;
+    double sum = 0, worst = 0, lead = 0, squares = 0;
+    std::size_t n = 0, inside = 0;
     for (const auto& [rx, ry] : reference_curve(m.at("reference"), scene_dir)) {
         const double sim_y = interpolate(x, y, rx);
-        if (std::isnan(sim_y) || ry == 0) continue;
+        if (std::isnan(sim_y)) continue;
+        squares += (sim_y - ry) * (sim_y - ry);
+        ++inside;
+        if (ry == 0) continue;
         const double e = std::fabs(sim_y - ry) / std::fabs(ry);
         sum += e;
         worst = std::max(worst, e);
+        lead = std::max(lead, (sim_y - ry) / std::fabs(ry));
         ++n;
     }
-    out["points"] = n;
-    out["error"] = n ? sum / double(n) : std::nan("");
+    const std::size_t points = norm == "rms" ? inside : n;
+    out["points"] = points;
+    out["error"] = points == 0        ? std::nan("")
+                   : norm == "rms"  ? std::sqrt(squares / double(points))
+                   : norm == "lead" ? lead
+                                    : sum / double(points);
     out["max_error"] = worst;
     return out;
 }

@@ -1,0 +1,87 @@
+// Metrics of validation cases on a ball in free fall, where the figures are
+// known by hand: the mean over time of a history sampled at two steps, the
+// RMS difference and the lead against a reference curve (with a row filter).
+#include "metrics.hpp"
+#include "simulation.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+using namespace plab;
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+
+namespace {
+
+fs::path scratch_dir() {
+    const fs::path dir = fs::temp_directory_path() / ("plab_case_metrics_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    return dir;
+}
+
+// A ball falling from rest at g (no contacts), its velocity recorded every step.
+json falling_ball(double g = 10) {
+    return {{"dimension", 2},
+            {"variables", {{"g", g}}},
+            {"gravity", {0, "$(-g)"}},
+            {"plugins", {"linear"}},
+            {"timestep", {{"fixed", 0.01}}},
+            {"bodies", {{{"type", "ball"}, {"group", "ball"}, {"position", {0, 0}}, {"radius", 0.01}, {"density", 1000}}}},
+            {"histories", {{"every", 1}, {"record", {{{"quantity", "time"}}, {{"name", "vy"}, {"quantity", "ball.velocity.y"}, {"id", 0}}}}}}};
+}
+
+double figure(const json& metrics, const Simulation& sim, const std::string& dir, const char* field) {
+    const json out = evaluate_metrics(metrics, sim, dir);
+    REQUIRE(out.size() == 1);
+    INFO(out.dump());
+    REQUIRE(out[0].contains(field));
+    return out[0][field].get<double>();
+}
+
+} // namespace
+
+TEST_CASE("time_mean weights each sample by the time since the one before it; mean counts samples", "[metrics]") {
+    Simulation sim(falling_ball());
+    sim.set_quiet(true);
+    World& w = sim.world();
+    sim.cycle(50);  // 0.5 s at 0.01 s: v = -10 t
+    w.fixed_dt = 0.04;
+    sim.cycle(25);  // 1 s more at 0.04 s
+    // right Riemann sums of -10 t: -1.275 over the first 0.5 s, -10.2 over the next 1 s
+    const json time_mean = {{{"name", "v"}, {"history", "vy"}, {"reduce", "time_mean"}}};
+    CHECK(figure(time_mean, sim, ".", "value") == Approx(-11.475 / 1.5));
+    const json mean = {{{"name", "v"}, {"history", "vy"}, {"reduce", "mean"}}};
+    CHECK(figure(mean, sim, ".", "value") == Approx(-382.5 / 76));  // 76 samples, t = 0 included
+    // a window that starts between samples takes the interval from the sample before it
+    const json window = {{{"name", "v"}, {"history", "vy"}, {"reduce", "time_mean"}, {"from", 0.52}, {"to", 1.51}}};
+    CHECK(figure(window, sim, ".", "value") == Approx(-10 * (0.54 + 1.5) / 2));  // samples 0.54 ... 1.5, each 0.04 s
+}
+
+TEST_CASE("a curve metric gives the RMS difference in the reference's units, or how far the run leads", "[metrics]") {
+    const fs::path dir = scratch_dir();
+    // series A: at t = 0 (v = 0: only the RMS counts it), 0.2 (run -2 against -2.5: leads by 0.2), 0.4 (run -4
+    // against -3.5: lags), 1.0 (equal), 2.0 (after the run); series B would lead everywhere
+    std::ofstream(dir / "ref.csv") << "# a reference\nseries,t,v\nA,0,0\nA,0.2,-2.5\nB,0.2,-1\nA,0.4,-3.5\nA,1.0,-10\nA,2.0,-20\n";
+    Simulation sim(falling_ball());
+    sim.set_quiet(true);
+    sim.cycle(100);
+    const json series_a = {{{"column", 0}, {"equals", "A"}}};
+    json m = json::array({{{"name", "v"}, {"history", "vy"},
+                           {"reference", {{"file", "ref.csv"}, {"x_column", 1}, {"y_column", 2}, {"where", series_a}}}}});
+    CHECK(figure(m, sim, dir.string(), "error") == Approx((0.2 + 0.5 / 3.5) / 3));
+    m[0]["norm"] = "rms";
+    CHECK(figure(m, sim, dir.string(), "error") == Approx(std::sqrt(0.5 / 4)));
+    CHECK(figure(m, sim, dir.string(), "points") == 4);
+    m[0]["norm"] = "lead";
+    CHECK(figure(m, sim, dir.string(), "error") == Approx(0.2));
+    std::ofstream(dir / "lagging.csv") << "t,v\n0.5,-4\n";  // the run (-5) lags only: no lead
+    m[0]["reference"] = {{"file", "lagging.csv"}, {"x_column", 0}, {"y_column", 1}};
+    CHECK(figure(m, sim, dir.string(), "error") == 0.0);
+    m[0]["norm"] = "median";
+    CHECK_THROWS_WITH(evaluate_metrics(m, sim, dir.string()), Contains("scene.metrics[0].norm") && Contains("rms"));
+    fs::remove_all(dir);
+}
