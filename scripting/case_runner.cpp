@@ -138,10 +138,21 @@ double metric_of(const Node& c, const RunRecord& r) {
     return m->contains(field) && (*m)[field].is_number() ? (*m)[field].get<double>() : std::nan("");
 }
 
+// Run a's metric minus run b's ("difference": ["case II", "case I"]: the
+// weaker plate breaks into more pieces).
+double metric_difference(const Node& c, const std::vector<RunRecord>& runs) {
+    const Node pair = c.at("difference");
+    pair.expect_array();
+    if (pair.size() != 2) pair.fail("difference names two runs: [\"run a\", \"run b\"] (the figure is a's minus b's)");
+    return metric_of(c, find_run(pair.at(0), runs, pair.at(0).string())) -
+           metric_of(c, find_run(pair.at(1), runs, pair.at(1).string()));
+}
+
 // A run's metric, or the largest over a list of runs ("run": ["2D", "3D"]);
 // or two runs compared.
 double check_error(const Node& c, const std::vector<RunRecord>& runs, const fs::path& dir) {
     if (c.has("compare")) return compare_runs(c, runs, dir);
+    if (c.has("difference")) return metric_difference(c, runs);
     const Node rn = c.at("run");
     if (!rn.value().is_array()) return metric_of(c, find_run(rn, runs, rn.string()));
     double worst = -kInf;
@@ -223,8 +234,8 @@ CaseResult run_case(const fs::path& dir, const json& spec, bool quick) {
     bool headline = false;
     for (std::size_t k = 0; k < cn.size(); ++k) {
         const Node c = cn.at(k);
-        c.allow_keys({"name", "run", "metric", "field", "compare", "history", "x", "at", "from", "to", "norm", "tolerance",
-                      "at_least", "in"});
+        c.allow_keys({"name", "run", "metric", "field", "compare", "difference", "history", "x", "at", "from", "to", "norm",
+                      "tolerance", "at_least", "in"});
         if (!in_mode(c, quick)) continue;
         const double e = check_error(c, runs, dir);
         // "tolerance": the figure at most this; "at_least": a bound from below (e.g. a clearance, m)

@@ -1,14 +1,17 @@
-// Metrics of validation cases on a ball in free fall, where the figures are
-// known by hand: the mean over time of a history sampled at two steps, the
-// RMS difference and the lead against a reference curve (with a row filter).
+// Metrics and checks of validation cases on a ball in free fall, where the
+// figures are known by hand: the mean over time of a history sampled at two
+// steps, the RMS difference and the lead against a reference curve (with a
+// row filter), and a check on the difference of two runs' metrics.
 #include "metrics.hpp"
 #include "simulation.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <unistd.h>
 
 using namespace plab;
@@ -84,4 +87,30 @@ TEST_CASE("a curve metric gives the RMS difference in the reference's units, or 
     m[0]["norm"] = "median";
     CHECK_THROWS_WITH(evaluate_metrics(m, sim, dir.string()), Contains("scene.metrics[0].norm") && Contains("rms"));
     fs::remove_all(dir);
+}
+
+TEST_CASE("a case check on the difference of two runs' metrics", "[metrics][validation]") {
+    const fs::path dir = scratch_dir() / "cases", tiny = dir / "tiny";
+    fs::create_directories(tiny);
+    json scene = falling_ball();
+    scene["metrics"] = {{{"name", "speed"}, {"history", "vy"}, {"scale", -1}}};
+    scene["commands"] = {{{"cycle", 10}}};  // 0.1 s: 1 m/s at g = 10, 0.5 m/s at g = 5
+    std::ofstream(tiny / "scene.json") << scene.dump(1);
+    const json spec = {{"description", "two falls"},
+                       {"runs", {{{"label", "g 10"}}, {{"label", "g 5"}, {"set", {{"variables.g", 5}}}}}},
+                       {"checks", {{{"name", "faster at g 10"}, {"difference", {"g 10", "g 5"}}, {"metric", "speed"},
+                                    {"field", "value"}, {"at_least", 0.49}},
+                                   {{"name", "not by much"}, {"difference", {"g 10", "g 5"}}, {"metric", "speed"},
+                                    {"field", "value"}, {"tolerance", 0.4}}}}};
+    std::ofstream(tiny / "case.json") << spec.dump(1);
+    const fs::path out = dir / "out.txt";
+    const std::string cmd = "PLAB_VALIDATION_DIR=" + dir.string() + " " + PLAB_EXE + " validate tiny --quick > " + out.string() + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream f(out);
+    std::stringstream text;
+    text << f.rdbuf();
+    INFO(text.str());
+    CHECK(status != 0);  // the second check fails
+    CHECK_THAT(text.str(), Contains("faster at g 10: 0.5 (at least 0.49) PASS") && Contains("not by much: 0.5 (tolerance 0.4) FAIL"));
+    fs::remove_all(dir.parent_path());
 }
