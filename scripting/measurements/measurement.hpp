@@ -31,7 +31,12 @@ struct MeasurementInfo {
 // register_measurements()).
 const std::map<std::string, MeasurementInfo>& measurements();
 
+// The group named by with.group; an error naming the path and the scene's
+// groups when there is none of that name.
+int measured_group(const Node& with, const World& w);
+
 // One register_*() per file of measurements/, called by measurements().
 void register_sph_measurements(std::map<std::string, MeasurementInfo>& into);
+void register_coupling_measurements(std::map<std::string, MeasurementInfo>& into);
 
 } // namespace plab

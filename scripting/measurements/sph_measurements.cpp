@@ -14,13 +14,6 @@ namespace plab {
 
 namespace {
 
-int group_of(const Node& with, const World& w) {
-    const std::string g = with.at("group").string();
-    const int group = w.find_group(g);
-    if (group < 0) with.at("group").fail("unknown group \"" + g + "\"");
-    return group;
-}
-
 // Heights are measured in the frame of a tank that rises as ½ a t² from
 // rest (frame_acceleration a, m/s²), so a tank accelerating upward is judged
 // as one at rest under g + a.
@@ -35,7 +28,7 @@ double frame_rise(double a, double t) { return 0.5 * a * t * t; }
 Measurement hydrostatic_pressure_error(const Node& with, const World& w) {
     with.allow_keys({"group", "field", "rest_density", "gravity", "surface_level", "exclude_above", "average_from",
                      "frame_acceleration"});
-    const int group = group_of(with, w);
+    const int group = measured_group(with, w);
     const int field = w.field_index(with.string_or("field", "sph_pressure"));
     if (field < 0) with.fail("this scene has no field \"" + with.string_or("field", "sph_pressure") + "\"");
     const double rho0 = with.at("rest_density").positive(), g = with.at("gravity").positive();
@@ -78,7 +71,7 @@ Measurement hydrostatic_pressure_error(const Node& with, const World& w) {
 // it started (in the frame of frame_acceleration), m.
 Measurement max_displacement(const Node& with, const World& w) {
     with.allow_keys({"group", "frame_acceleration"});
-    const int group = group_of(with, w);
+    const int group = measured_group(with, w);
     const double a = with.number_or("frame_acceleration", 0.0);
     auto start = std::make_shared<std::vector<Vec>>(w.bodies.position);
     auto ids = std::make_shared<std::vector<BodyId>>(w.bodies.id);
@@ -97,7 +90,7 @@ Measurement max_displacement(const Node& with, const World& w) {
 // frame of frame_acceleration, m; the smallest over every sample so far.
 Measurement min_clearance(const Node& with, const World& w) {
     with.allow_keys({"group", "min", "max", "frame_acceleration"});
-    const int group = group_of(with, w);
+    const int group = measured_group(with, w);
     const Vec lo = with.at("min").vec(w.dim), hi = with.at("max").vec(w.dim);
     const double a = with.number_or("frame_acceleration", 0.0);
     auto lowest = std::make_shared<double>(kInf);
