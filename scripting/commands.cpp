@@ -353,13 +353,13 @@ std::function<void(World&)> Simulation::load_bond(const Node& n) {
     }
     const double gap = n.number_or("gap", 0.0, 0.0, kInf, false, true);
     const std::string path = n.path();
-    const bool quiet = quiet_;
-    return [g0 = g[0], g1 = g[1], gap, path, quiet](World& w) {
+    // quiet_ read when the command runs: set_quiet() comes after the scene is loaded
+    return [g0 = g[0], g1 = g[1], gap, path, this](World& w) {
         const std::size_t made = w.bond(g0, g1, gap);
         if (made == 0)
             throw InputError(path, "made no bond: no contact of a model with bonds (e.g. linear_pbond) between the two "
                                    "groups has a surface gap <= " + std::to_string(gap) + " m");
-        if (!quiet) spdlog::info("{}: {} bonds", path, made);
+        if (!quiet_) spdlog::info("{}: {} bonds", path, made);
     };
 }
 
