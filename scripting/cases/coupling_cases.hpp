@@ -9,37 +9,6 @@
 
 namespace plab::cases {
 
-// Thesis §7.1: one disc (ρ_s = 1250, r = 1.25 mm) settling from 0.04 m in a
-// closed 0.02 × 0.06 m box of fluid (ρ_f = 1000, μ = 0.01 Pa s), unresolved
-// coupling (the disc is one DEM ball; the fluid particles overlap it).
-struct SedimentationSpec {
-    double spacing = 0.00125;     // fluid particle spacing dp, m (must divide 0.02 and 0.06)
-    double h_over_dp = 2.0;       // thesis: h = 3 mm at dp = 1.5 mm
-    double speed_of_sound = 0;    // m/s; 0: 10 sqrt(g H)
-    int drag_2d = 0;              // 0 cylinder, 1 thesis (sphere Cd on the disc), drag_law.hpp
-    int buoyancy = 0;             // 0 -V grad p, 1 thesis eq. 75
-    // smoothing length of the coupling's voidage / Shepard kernel, m; 0: the
-    // fluid's h (the thesis). 6 mm ≈ 2.4 d: with it the terminal velocity
-    // converges with dp (+7.7, +5.0, +3.3 % at d/dp 1, 1.25, 2); with the
-    // fluid's kernel it swings between +14 and -23 % (docs/coupling.md)
-    double coupling_length = 0.006;
-    double end_time = 0.8;        // s
-};
-
-struct SedimentationResult {
-    std::vector<double> t, y, v;       // disc centre height (m) and vertical velocity (m/s)
-    std::vector<double> voidage, fluid_force_y, drag_coefficient;  // ε_p, fluid force (N/m), K (N s/m²) at the disc
-    double terminal_velocity = 0;      // mean v over 0.35 <= t <= 0.66 s (the reference's plateau window), m/s
-    double velocity_rms = 0;           // RMS of v - v_ref over the Glowinski points with t <= end, m/s
-    double height_rms = 0;             // RMS of y - y_ref over Zhang's points with t <= end, m
-    double cpu_seconds = 0;
-    long steps = 0;
-    int fluid = 0, boundary = 0;
-};
-
-nlohmann::json sedimentation_scene(const SedimentationSpec& s);
-SedimentationResult sedimentation(const SedimentationSpec& s);
-
 // Thesis §7.3, Table 7 (Antoci et al. 2007): elastic gate under a dam break.
 struct ElasticGateSpec {
     double spacing = 0.0025;       // fluid particle spacing dp, m (Table 7: 1.75 mm); h = 1.25 dp (Table 7)
@@ -165,8 +134,5 @@ struct FpsiResult {
 
 nlohmann::json fpsi_scene(const FpsiSpec& s);
 FpsiResult fpsi(const FpsiSpec& s);
-
-// The reference's terminal velocity (Glowinski et al. 2001), m/s.
-constexpr double glowinski_terminal_velocity = 0.0555;
 
 } // namespace plab::cases

@@ -159,7 +159,7 @@ TEST_CASE("an SPH tank restarts bit-identically (fields and the EOS pass state c
 }
 
 TEST_CASE("a coupled SPH-DEM scene (sedimentation) restarts bit-identically, 1 and 2 threads", "[restart][coupling]") {
-    json scene = read_scene_file(std::string(PLAB_SOURCE_DIR) + "/examples/coupled/sedimentation.json");
+    json scene = read_scene_file(std::string(PLAB_SOURCE_DIR) + "/validation/sedimentation/scene.json");
     scene.erase("commands");
     scene.erase("output");
     ThreadsBack back;

@@ -8,6 +8,7 @@
 #include "../../plugins/coupling_fluid_particle/drag_law.hpp"
 #include <cases/coupling_cases.hpp>
 #include <cases/sph_cases.hpp>
+#include "../support/case_scene.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -140,11 +141,8 @@ TEST_CASE("fluid-particle coupling returns the drag to the fluid: momentum conse
 TEST_CASE("buoyancy from the SPH pressure gradient carries a disc of fluid density", "[coupling]") {
     // the quick sedimentation box with the disc made neutrally buoyant: at
     // rest in hydrostatic fluid the net vertical force is weight - V ∇p
-    cases::SedimentationSpec s;
-    s.spacing = 0.0025;
-    json scene = cases::sedimentation_scene(s);
+    json scene = testing_support::case_scene("sedimentation", {{"variables.dp", 0.0025}, {"variables.rho_s", 1000}});
     scene.erase("commands");
-    scene["bodies"].back()["density"] = 1000;
     Simulation sim(scene);
     sim.set_quiet(true);
     World& w = sim.world();
@@ -160,36 +158,37 @@ TEST_CASE("buoyancy from the SPH pressure gradient carries a disc of fluid densi
 }
 
 TEST_CASE("quick sedimentation settles at the reference terminal velocity within 10 %", "[coupling]") {
-    cases::SedimentationSpec s;
-    s.spacing = 0.0025;
-    s.end_time = 0.7;
-    const cases::SedimentationResult r = cases::sedimentation(s);
-    INFO("terminal velocity " << r.terminal_velocity << " m/s, " << r.steps << " steps, " << r.cpu_seconds << " s CPU");
-    CHECK(std::fabs(r.terminal_velocity - cases::glowinski_terminal_velocity) <
-          0.10 * cases::glowinski_terminal_velocity);
+    using namespace testing_support;  // the quick version of `plab validate sedimentation`
+    const auto sim = run_scene(case_scene("sedimentation", {{"variables.dp", 0.0025}, {"variables.end_time", 0.7}}));
+    INFO("terminal velocity " << metric(*sim, "terminal_velocity") << " m/s, " << sim->world().step_count << " steps");
+    // |v - 0.0555| / 0.0555, v the mean over 0.35-0.66 s (Glowinski's plateau)
+    CHECK(metric(*sim, "terminal_velocity", "error") < 0.10);
     // it falls monotonically after release: no rebound, no oscillation of the drag
-    CHECK(r.y.back() < r.y.front() - 0.015);
+    CHECK(metric(*sim, "fall") > 0.015);
 }
 
 // Not part of the test run (hidden tag): the resolution and drag-law study
 // of docs/coupling.md, `build/tests/plab_tests "[.sedimentation_study]"`.
 TEST_CASE("sedimentation study: terminal velocity against d/dp and the 2D drag reading", "[.sedimentation_study]") {
+    using namespace testing_support;
     // e.g. PLAB_STUDY="0.0025:0:0.45,0.00125:1:0.8" = dp:drag_2d:end[:h/dp[:buoyancy[:h_coupling]]]
     for (const auto& v : study_points("0.0025:0:0.8,0.002:0:0.8,0.00125:0:0.8,0.001:0:0.8",
                                       {0.0025, 0, 0.8, 2.0, 0, 0.006})) {  // h_c 0: the fluid's kernel
-        cases::SedimentationSpec s;
-        s.spacing = v[0]; s.drag_2d = int(v[1]); s.end_time = v[2]; s.h_over_dp = v[3]; s.buoyancy = int(v[4]);
-        s.coupling_length = v[5];
-        const cases::SedimentationResult r = cases::sedimentation(s);
+        const auto sim = run_scene(case_scene("sedimentation", {{"variables.dp", v[0]}, {"variables.drag_2d", v[1]},
+                                                                {"variables.end_time", v[2]}, {"variables.h_over_dp", v[3]},
+                                                                {"variables.buoyancy", v[4]}, {"variables.coupling_length", v[5]}}));
         std::printf("h_c %.4f dp %.5f d/dp %.2f h/dp %.2f drag_2d %d buoyancy %d: terminal %.4f m/s (err %+.1f %%), RMS v %.4f m/s, "
-                    "RMS y %.4f m, %ld steps, %.0f s CPU\n",
-                    s.coupling_length, s.spacing, 0.0025 / s.spacing, s.h_over_dp, s.drag_2d, s.buoyancy, r.terminal_velocity,
-                    100 * (r.terminal_velocity / cases::glowinski_terminal_velocity - 1), r.velocity_rms, r.height_rms,
-                    r.steps, r.cpu_seconds);
-        if (std::getenv("PLAB_STUDY_HISTORY"))
-            for (std::size_t k = 0; k < r.t.size(); k += 200)
-                std::printf("  t %.4f y %.5f v %.5f eps_p %.3f F_y %.5f K %.4f\n", r.t[k], r.y[k], r.v[k], r.voidage[k],
-                            r.fluid_force_y[k], r.drag_coefficient[k]);
+                    "RMS y %.4f m, %llu steps, %.0f s CPU\n",
+                    v[5], v[0], 0.0025 / v[0], v[3], int(v[1]), int(v[4]), metric(*sim, "terminal_velocity"),
+                    100 * (metric(*sim, "terminal_velocity") / metric(*sim, "terminal_velocity", "reference") - 1),
+                    metric(*sim, "velocity_rms", "error"), metric(*sim, "height_rms", "error"),
+                    static_cast<unsigned long long>(sim->world().step_count), sim->summary()["cpu_seconds"].get<double>());
+        if (std::getenv("PLAB_STUDY_HISTORY")) {
+            const auto t = sim->history("time"), y = sim->history("disc_y"), vy = sim->history("disc_vy"),
+                       eps = sim->history("voidage"), fy = sim->history("fluid_force_y"), K = sim->history("drag_coefficient");
+            for (std::size_t k = 0; k < t.size(); k += 200)
+                std::printf("  t %.4f y %.5f v %.5f eps_p %.3f F_y %.5f K %.4f\n", t[k], y[k], vy[k], eps[k], fy[k], K[k]);
+        }
         std::fflush(stdout);
     }
 }
@@ -216,7 +215,6 @@ TEST_CASE("elastic gate study: free-end displacement against Antoci 2007", "[.el
 // the validation cases' scene builders, so the examples are the cases' scenes.
 TEST_CASE("write the coupled examples", "[.write_examples]") {
     const std::string dir = std::string(PLAB_SOURCE_DIR) + "/examples/coupled/";
-    std::ofstream(dir + "sedimentation.json") << cases::sedimentation_scene(cases::SedimentationSpec{}).dump(1) << "\n";
     std::ofstream(dir + "elastic_gate.json") << cases::elastic_gate_scene(cases::ElasticGateSpec{}).dump(1) << "\n";
     std::ofstream(dir + "gate_fracture.json") << cases::gate_fracture_scene(cases::GateFractureSpec{}).dump(1) << "\n";
     std::ofstream(dir + "two_phase_dam_break.json")
@@ -225,25 +223,6 @@ TEST_CASE("write the coupled examples", "[.write_examples]") {
     weak.bond_strength = 2e4;
     std::ofstream(dir + "fpsi_case_I.json") << cases::fpsi_scene(cases::FpsiSpec{}).dump(1) << "\n";
     std::ofstream(dir + "fpsi_case_II.json") << cases::fpsi_scene(weak).dump(1) << "\n";
-}
-
-// The sedimentation sweep over d/dp (docs/speed-accuracy.md): the case's
-// scene at three fluid spacings, with the terminal velocity as its metric.
-TEST_CASE("write the sedimentation sweep scenes", "[.write_examples]") {
-    const std::string dir = std::string(PLAB_SOURCE_DIR) + "/examples/sweeps/";
-    for (const auto& [dp, name] : {std::pair{0.0025, "2.5"}, {0.002, "2"}, {0.00125, "1.25"}}) {
-        cases::SedimentationSpec s;
-        s.spacing = dp;
-        json scene = cases::sedimentation_scene(s);
-        scene["description"] = "Speed-accuracy sweep scene (docs/speed-accuracy.md): the sedimentation case (" +
-                               std::string("examples/coupled/sedimentation.json, thesis 7.1) with fluid spacing dp = ") +
-                               name + " mm, d/dp = " + std::to_string(0.0025 / dp).substr(0, 4) +
-                               ", coupling kernel 6 mm; the metric is the terminal velocity (mean over 0.35-0.66 s, "
-                               "as plab validate sedimentation) against Glowinski et al. 2001, 0.0555 m/s.";
-        scene["metrics"] = {{{"name", "terminal_velocity"}, {"history", "disc_vy"}, {"reduce", "mean"}, {"from", 0.35},
-                             {"to", 0.66}, {"scale", -1.0}, {"analytical", cases::glowinski_terminal_velocity}}};
-        std::ofstream(dir + "sedimentation_dp" + name + "mm.json") << scene.dump(1) << "\n";
-    }
 }
 
 TEST_CASE("a structure floor in the SPH sums carries the weight of the water above it", "[coupling]") {

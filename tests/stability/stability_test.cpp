@@ -4,8 +4,8 @@
 // garbage. Short runs; the table of outcomes is in docs/stability.md.
 #include "simulation.hpp"
 
-#include <cases/coupling_cases.hpp>
 #include <cases/sph_cases.hpp>
+#include "../support/case_scene.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -405,17 +405,16 @@ struct Settling {
     std::vector<double> t, y, v;  // the disc's height (m) and vertical velocity (m/s)
 };
 
-// The sedimentation case's scene (docs/coupling.md) at its coarse
+// The sedimentation case's scene (validation/sedimentation) at its coarse
 // resolution (dp 2.5 mm, the disc's diameter), the disc of density
 // rho_f / ratio released at rest at y = 0.04 m, run for `seconds`.
 Settling settle(double ratio, double seconds, double floor_kn = 0) {
-    cases::SedimentationSpec spec;
-    spec.spacing = 0.0025;
-    json scene = cases::sedimentation_scene(spec);
+    std::vector<std::pair<std::string, json>> sets = {{"variables.dp", 0.0025}, {"variables.rho_s", 1000.0 / ratio}};
+    if (floor_kn > 0) sets.push_back({"variables.floor_kn", floor_kn});
+    json scene = testing_support::case_scene("sedimentation", sets);
     scene.erase("commands");
     scene.erase("histories");
-    scene["bodies"].back()["density"] = 1000.0 / ratio;
-    if (floor_kn > 0) scene["contact_models"].back()["properties"]["kn"] = floor_kn;
+    scene.erase("metrics");
     Simulation sim(scene);
     sim.set_quiet(true);
     World& w = sim.world();
