@@ -3,8 +3,7 @@
 // the coupled scenes that use it.
 #include "simulation.hpp"
 
-#include <cases/coupling_cases.hpp>
-#include <cases/sph_cases.hpp>
+#include "../support/case_scene.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -75,17 +74,19 @@ TEST_CASE("lubrication stops beyond one diameter's gap, stays finite at contact,
 // settings, PLAB_STUDY="dp:lubrication_mu:end[:coupling_length]", comma-separated;
 // PLAB_STUDY_HISTORY=1 prints the fronts.
 TEST_CASE("two-phase dam break study", "[.two_phase_study]") {
+    using namespace testing_support;
     for (const auto& v : study_points("0.0025:8.9e-4:0.2", {0.0025, 8.9e-4, 0.2, 0.006})) {
-        cases::TwoPhaseDamBreakSpec s;
-        s.spacing = v[0]; s.lubrication_mu = v[1]; s.end_time = v[2]; s.coupling_length = v[3];
-        const cases::TwoPhaseDamBreakResult r = cases::two_phase_dam_break(s);
+        const auto sim = run_scene(case_scene("two_phase_dam_break", {{"variables.dp", v[0]}, {"variables.lubrication_mu", v[1]},
+                                                                      {"variables.end_time", v[2]}, {"variables.coupling_length", v[3]}}));
         std::printf("dp %.4f lubrication mu %.3g h_c %.4f: front error vs Martin & Moyce %.1f %%, t* end %.2f, z* end %.2f, "
-                    "grain z* end %.2f, lost %d; %ld steps, %.0f s CPU\n",
-                    s.spacing, s.lubrication_mu, s.coupling_length, 100 * r.mean_error, r.t_star.back(), r.z_star.back(),
-                    r.grain_z_star.back(), r.lost, r.steps, r.cpu_seconds);
-        if (std::getenv("PLAB_STUDY_HISTORY"))
-            for (std::size_t k = 0; k < r.t_star.size(); k += 40)
-                std::printf("  t* %.3f z* %.3f grains %.3f\n", r.t_star[k], r.z_star[k], r.grain_z_star[k]);
+                    "grain z* end %.2f, lost %.0f; %llu steps, %.0f s CPU\n",
+                    v[0], v[1], v[3], 100 * metric(*sim, "lag", "error"), metric(*sim, "T_end"), metric(*sim, "front"),
+                    metric(*sim, "grain_front"), metric(*sim, "lost"), static_cast<unsigned long long>(sim->world().step_count),
+                    sim->summary()["cpu_seconds"].get<double>());
+        if (std::getenv("PLAB_STUDY_HISTORY")) {
+            const auto T = sim->history("T"), Z = sim->history("Z"), grains = sim->history("grain_Z");
+            for (std::size_t k = 0; k < T.size(); k += 40) std::printf("  t* %.3f z* %.3f grains %.3f\n", T[k], Z[k], grains[k]);
+        }
         std::fflush(stdout);
     }
 }
