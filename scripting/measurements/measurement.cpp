@@ -6,6 +6,7 @@ const std::map<std::string, MeasurementInfo>& measurements() {
     static const std::map<std::string, MeasurementInfo> all = [] {
         std::map<std::string, MeasurementInfo> m;
         register_sph_measurements(m);
+        register_bonded_measurements(m);
         return m;
     }();
     return all;

@@ -33,5 +33,6 @@ const std::map<std::string, MeasurementInfo>& measurements();
 
 // One register_*() per file of measurements/, called by measurements().
 void register_sph_measurements(std::map<std::string, MeasurementInfo>& into);
+void register_bonded_measurements(std::map<std::string, MeasurementInfo>& into);
 
 } // namespace plab
