@@ -183,8 +183,9 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
 } // namespace
 
 void Simulation::load_histories(const Node& n) {
-    n.allow_keys({"every", "record"});
+    n.allow_keys({"every", "record", "at_end"});
     history_every_ = n.has("every") ? n.at("every").integer(1, 1L << 40) : 100;
+    history_at_end_ = n.has("at_end") && n.at("at_end").boolean();
     const Node rec = n.at("record");
     rec.expect_array();
     for (std::size_t i = 0; i < rec.size(); ++i) {
@@ -512,6 +513,13 @@ void Simulation::finish_run(std::clock_t cpu0) {
     run_.simulated_time = w.time;
     run_.particle_steps_per_second =
         run_.wall_seconds > 0 ? double(run_.steps) * double(w.bodies.size()) / run_.wall_seconds : 0;
+    // histories.at_end: the state the run ends in (an equilibrium a ratio
+    // solve reached, the step a bond broke) is a row too, unless the last
+    // step was sampled already (rows are taken at step 0 and every `every`)
+    if (history_at_end_ && !history_cols_.empty()) {
+        const bool sampled = !history_rows_.empty() && w.step_count % std::uint64_t(history_every_) == 0;
+        if (!sampled) history_rows_.push_back(sample_history_row());
+    }
     if (scene_.contains("metrics")) metrics_ = evaluate_metrics(scene_["metrics"], *this, scene_dir_);
     if (!out_dir_.empty()) write_outputs();
 }

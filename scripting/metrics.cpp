@@ -5,6 +5,7 @@
 //     max, min, mean, time_mean, max_abs) times `scale`, optionally over the
 //     samples whose time lies in [from, to] (a terminal velocity is the mean
 //     over a plateau), against an exact value: error = |value - exact| / |exact|;
+//     with `against`, the exact value is another history reduced alike;
 //   reference:  a history against a reference curve (a CSV beside
 //     the scene or in validation/reference), both scaled to the reference's
 //     variables: error = mean |sim - ref| / |ref| over the reference points
@@ -265,7 +266,7 @@ json curve_metric(const Node& m, const Samples& s, const std::string& scene_dir,
 }
 
 json one_metric(const Node& m, const Simulation& sim, const std::string& scene_dir) {
-    m.allow_keys({"name", "history", "reduce", "scale", "relative_to", "analytical", "exact", "norm", "event", "from", "to",
+    m.allow_keys({"name", "history", "reduce", "scale", "relative_to", "analytical", "against", "exact", "norm", "event", "from", "to",
                   "time_history", "x_scale", "y_scale", "reference"});
     json out = {{"name", m.at("name").string()}};
     const std::vector<double> h = named_history(m.at("history"), m.at("history").string(), sim);
@@ -277,6 +278,10 @@ json one_metric(const Node& m, const Simulation& sim, const std::string& scene_d
         return out;
     }
     if (m.has("analytical")) return relative_to(std::move(out), reduced(m, s, sim), m.at("analytical").number());
+    if (m.has("against")) {  // a solution that depends on the run (e.g. on a measured length): another column, reduced alike
+        const Samples r = in_window(m, t, named_history(m.at("against"), m.at("against").string(), sim));
+        return relative_to(std::move(out), reduced(m, s, sim), reduced(m, r, sim));
+    }
     if (m.has("exact")) return exact_metric(m, s, sim, std::move(out));
     if (!m.has("reference")) {  // a figure without a reference: its value only (a check may bound it)
         out["value"] = reduced(m, s, sim);

@@ -102,6 +102,7 @@ private:
     std::vector<HistoryColumn> history_cols_;
     std::vector<std::vector<double>> history_rows_;
     long history_every_ = 0;
+    bool history_at_end_ = false;  // histories.at_end: a row of the final state as well
     double vtk_interval_ = 0, next_vtk_time_ = 0;
     int vtk_frames_ = 0;
     std::vector<std::pair<double, std::string>> vtk_series_;

@@ -18,6 +18,7 @@ const std::map<std::string, MeasurementInfo>& measurements() {
         std::map<std::string, MeasurementInfo> m;
         register_sph_measurements(m);
         register_coupling_measurements(m);
+        register_bonded_measurements(m);
         return m;
     }();
     return all;

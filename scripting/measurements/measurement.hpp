@@ -38,5 +38,6 @@ int measured_group(const Node& with, const World& w);
 // One register_*() per file of measurements/, called by measurements().
 void register_sph_measurements(std::map<std::string, MeasurementInfo>& into);
 void register_coupling_measurements(std::map<std::string, MeasurementInfo>& into);
+void register_bonded_measurements(std::map<std::string, MeasurementInfo>& into);
 
 } // namespace plab

@@ -3,7 +3,7 @@
 // brittle plate hit by a fast ball.
 #include "simulation.hpp"
 
-#include <cases/bonded_cases.hpp>
+#include "../support/cantilever.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -176,45 +176,61 @@ TEST_CASE("the calibrated bond shear strength is reached when the lattice is she
 TEST_CASE("the calibrated cantilever deflects linearly in the load while deflections are small", "[bonds][cantilever]") {
     // (at 5000 N the 3-row beam bends 7 % of its length: geometric stiffening
     // of order (deflection/L)^2 then shows, 0.4 % here)
-    using plab::cases::static_cantilever;
-    const auto small = static_cantilever(0.001, 50, 1e-6), large = static_cantilever(0.001, 500, 1e-6);
-    CHECK(large.deflection / small.deflection == Approx(10.0).epsilon(0.001));
+    using namespace testing_support;
+    const auto small = solved_cantilever({{"variables.R", 0.001}, {"variables.P", 50}, {"variables.ratio", 1e-6}});
+    const auto large = solved_cantilever({{"variables.R", 0.001}, {"variables.P", 500}, {"variables.ratio", 1e-6}});
+    CHECK(at_end(*large, "deflection") / at_end(*small, "deflection") == Approx(10.0).epsilon(0.001));
 }
 
 TEST_CASE("a coarse cantilever (R = 1 mm, 3 rows) deflects within 6 % of Euler-Bernoulli and first breaks in "
           "tension on the bottom row at the clamp", "[bonds][cantilever]") {
     // 3 rows are a coarse beam; the tolerance is the one stated in
     // docs/speed-accuracy.md for this resolution (the 7-row beam meets 2 %).
-    const auto c = plab::cases::static_cantilever(0.001, 5000, 1e-5);
-    CHECK(c.deflection == Approx(c.analytical).epsilon(0.06));
-    CHECK(c.deflection == Approx(c.analytical_equivalent).epsilon(0.06));
-    CHECK(c.break_in_tension);
-    CHECK(c.break_x < 4 * 0.001 + 2.2 * 0.001);  // within two ball diameters of the clamp
-    CHECK(c.break_y < 0.0015);                    // the bottom row: tension under an upward tip load
+    // The quick run of `plab validate cantilever`:
+    using namespace testing_support;
+    const auto c = solved_cantilever(case_run_sets("cantilever", "R 1 mm, 5000 N, ratio 1e-5"));
+    const double nu = 0.33, R = 0.001;
+    CHECK(at_end(*c, "deflection") == Approx(metric(*c, "deflection_nominal", "reference")).epsilon(0.06));  // P L^3/(3 E I)
+    CHECK(at_end(*c, "deflection") == Approx(at_end(*c, "deflection_eq")).epsilon(0.06));  // the equivalent beam
+    CHECK(at_end(*c, "break_in_tension") == 1);
+    CHECK(at_end(*c, "break_x") < 4 * R + 2.2 * R);  // within two ball diameters of the clamp
+    CHECK(at_end(*c, "break_y") < 0.0015);           // the bottom row: tension under an upward tip load
     // the thesis strengths hold for bonds at 30 degrees to the tension; the
     // bottom row's bonds lie along it and break at (3 - nu)/4 of the load
     // that brings the beam stress at their centre line to sigma_ult
     // (the clamp adds a local concentration at this resolution: 11 %)
-    CHECK(c.first_break_load == Approx(c.row_strength_load * (3 - 0.33) / 4).epsilon(0.15));
+    CHECK(at_end(*c, "break_load") == Approx(at_end(*c, "row_strength_load") * (3 - nu) / 4).epsilon(0.15));
     // strength for tension along the bonds, beta = 1 (eq. 49: the stress at the
     // bond's outer edge, for the outer row the beam's surface) and the
     // aluminium's tau_ult (207 MPa): the first break meets sigma_ult b h^2/(6L)
-    // within 5 % (the issue's tolerance; -3.7 %), in tension
-    const auto along = plab::cases::static_cantilever(0.001, 5000, 1e-5, plab::cases::beam_fibre_rule());
-    CHECK(along.first_break_load_centre / c.first_break_load == Approx(4 / (3 - 0.33)).epsilon(1e-6));
-    CHECK(along.first_break_load == Approx(along.strength_load).epsilon(0.05));
-    CHECK(along.break_in_tension);
-    CHECK(along.first_shear_break_load > along.first_tension_break_load);
-    CHECK(along.break_x < 4 * 0.001 + 2.2 * 0.001);
-    CHECK(along.break_y < 0.0015);
+    // within 5 % (the issue's tolerance; -3.7 %), in tension. The quick static
+    // run of `plab validate cantilever_failure`:
+    const auto along = solved_cantilever(case_run_sets("cantilever_failure", "static, R 1 mm, ratio 1e-5"));
+    CHECK(at_end(*along, "centre_break_load") / at_end(*c, "break_load") == Approx(4 / (3 - nu)).epsilon(1e-6));
+    CHECK(at_end(*along, "thesis_rule_load") == Approx(at_end(*c, "break_load")).epsilon(1e-6));
+    CHECK(at_end(*along, "break_load") == Approx(metric(*along, "first_break_nominal", "reference")).epsilon(0.05));
+    CHECK(at_end(*along, "break_in_tension") == 1);
+    CHECK(at_end(*along, "shear_break_load") > at_end(*along, "tension_break_load"));
+    CHECK(at_end(*along, "break_x") < 4 * R + 2.2 * R);
+    CHECK(at_end(*along, "break_y") < 0.0015);
 }
 
 TEST_CASE("a brittle plate hit at 20 m/s breaks locally without NaN and keeps its energy balance within 5 %",
           "[bonds][robustness]") {
-    const auto r = plab::cases::plate_impact(20.0, 0.002);
-    CHECK(r.finite);
-    CHECK(r.balance_error < 0.05);
-    CHECK(r.broken > 0);
-    CHECK(double(r.broken) < 0.25 * double(r.bonds));
-    CHECK(r.max_speed < 2 * 20.0);  // no fragment faster than an elastic rebound allows
+    using namespace testing_support;
+    Simulation sim(read_scene_file(std::string(PLAB_SOURCE_DIR) + "/tests/physics/scenes/plate_impact.json"));
+    sim.set_quiet(true);
+    bool finite = true;
+    try {
+        sim.run();
+    } catch (const RunError&) {
+        finite = false;
+    }
+    const std::vector<double> balance = sim.history("balance"), kinetic = sim.history("kinetic");
+    const double input = kinetic.front(), broken = at_end(sim, "broken"), bonds = sim.history("intact").front();
+    CHECK(finite);
+    CHECK(std::fabs(balance.back() - balance.front()) / input < 0.05);
+    CHECK(broken > 0);
+    CHECK(broken < 0.25 * bonds);
+    CHECK(at_end(sim, "max_speed") < 2 * 20.0);  // no fragment faster than an elastic rebound allows
 }

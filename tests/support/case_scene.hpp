@@ -34,7 +34,7 @@ inline std::unique_ptr<Simulation> run_scene(const json& scene) {
 
 // The value (or error) of one of the scene's metrics after sim.run().
 inline double metric(const Simulation& sim, const std::string& name, const char* field = "value") {
-    const json summary = sim.summary();
+    const json summary = sim.summary();  // (a range over summary()["metrics"] would outlive the temporary)
     for (const json& m : summary["metrics"])
         if (m["name"] == name) return m[field].is_number() ? m[field].get<double>() : std::nan("");
     throw std::runtime_error("no metric " + name);
