@@ -148,18 +148,20 @@ double metric_difference(const Node& c, const std::vector<RunRecord>& runs) {
            metric_of(c, find_run(pair.at(1), runs, pair.at(1).string()));
 }
 
-// A run's metric, or the largest over a list of runs ("run": ["2D", "3D"]);
+// A run's metric, or the worst over a list of runs ("run": ["2D", "3D"]);
 // or two runs compared.
 double check_error(const Node& c, const std::vector<RunRecord>& runs, const fs::path& dir) {
     if (c.has("compare")) return compare_runs(c, runs, dir);
     if (c.has("difference")) return metric_difference(c, runs);
     const Node rn = c.at("run");
     if (!rn.value().is_array()) return metric_of(c, find_run(rn, runs, rn.string()));
-    double worst = -kInf;
+    // the worst of the runs: the largest for a tolerance, the smallest for a bound from below
+    const bool lower = c.has("at_least");
+    double worst = lower ? kInf : -kInf;
     for (std::size_t k = 0; k < rn.size(); ++k) {
         const double e = metric_of(c, find_run(rn.at(k), runs, rn.at(k).string()));
         if (std::isnan(e)) return e;  // a run without the figure fails the check
-        worst = std::max(worst, e);
+        worst = lower ? std::min(worst, e) : std::max(worst, e);
     }
     return worst;
 }
