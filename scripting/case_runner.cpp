@@ -89,15 +89,6 @@ const RunRecord& find_run(const Node& where, const std::vector<RunRecord>& runs,
     where.fail("no run labelled \"" + label + "\" in this version of the case");
 }
 
-// Linear interpolation of (xs, ys) at x; NaN outside the samples.
-double at(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
-    const auto it = std::lower_bound(xs.begin(), xs.end(), x);
-    if (it == xs.end() || (it == xs.begin() && *it > x)) return std::nan("");
-    const std::size_t k = std::size_t(it - xs.begin());
-    if (k == 0 || xs[k] == x) return ys[k];
-    return ys[k - 1] + (x - xs[k - 1]) / (xs[k] - xs[k - 1]) * (ys[k] - ys[k - 1]);
-}
-
 // Two runs' histories against each other: |y_a - y_b| / |y_b| at run b's
 // samples (or at the x of the reference curve \"at\") inside [from, to];
 // "norm" mean (default) or max.
@@ -119,7 +110,7 @@ double compare_runs(const Node& c, const std::vector<RunRecord>& runs, const fs:
     double sum = 0, worst = 0;
     std::size_t n = 0;
     for (const double x : xs) {
-        const double va = at(xa, ya, x), vb = at(xb, yb, x);
+        const double va = interpolate(xa, ya, x), vb = interpolate(xb, yb, x);
         if (x < from || x > to || std::isnan(va) || std::isnan(vb) || vb == 0) continue;
         const double e = std::fabs(va - vb) / std::fabs(vb);
         sum += e;

@@ -114,9 +114,6 @@ std::vector<std::pair<double, double>> reference_curve(const Node& ref, const st
     return points;
 }
 
-namespace {
-
-// Linear interpolation of (xs, ys) at x; NaN outside the sampled range.
 double interpolate(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
     const auto it = std::lower_bound(xs.begin(), xs.end(), x);
     if (it == xs.end() || (it == xs.begin() && *it > x)) return std::nan("");
@@ -125,6 +122,8 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
     const double w = (x - xs[k - 1]) / (xs[k] - xs[k - 1]);
     return ys[k - 1] + w * (ys[k] - ys[k - 1]);
 }
+
+namespace {
 
 // The samples (time, value) whose time (the `time_history`) lies in [from, to]
 // and whose value is a number.

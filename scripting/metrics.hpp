@@ -14,4 +14,7 @@ json evaluate_metrics(const json& metrics, const Simulation& sim, const std::str
 // "equals"}]}. Errors name the path.
 std::vector<std::pair<double, double>> reference_curve(const Node& ref, const std::string& scene_dir);
 
+// Linear interpolation of the samples (xs ascending, ys) at x; NaN outside them.
+double interpolate(const std::vector<double>& xs, const std::vector<double>& ys, double x);
+
 } // namespace plab
