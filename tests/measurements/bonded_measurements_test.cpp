@@ -1,6 +1,7 @@
 // The named measurements of bonded structures (scripting/measurements/
 // bonded_measurements.cpp), each on a tiny bonded lattice or pair whose
 // answer is known by hand.
+#include "../support/bonded_pair.hpp"
 #include "measurements/measurement.hpp"
 #include "simulation.hpp"
 
@@ -34,22 +35,7 @@ json strip(double pb_kn, double pb_ks) {
             {"timestep", {{"fixed", 1e-7}}}};
 }
 
-// Two bonded discs (R = 1 mm, touching, both fixed); ball 1 moves at `velocity`.
-std::unique_ptr<Simulation> bonded_pair(const json& velocity, double pb_ten, double pb_coh) {
-    json scene = {{"dimension", 2},
-                  {"plugins", {"linear_pbond"}},
-                  {"bodies", {{{"type", "ball"}, {"position", {0, 0}}, {"radius", R}, {"density", 2500}, {"fix", {"all"}}},
-                              {{"type", "ball"}, {"position", {2 * R, 0}}, {"radius", R}, {"density", 2500},
-                               {"fix", {"all"}}, {"velocity", velocity}}}},
-                  {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear_pbond"},
-                                       {"properties", {{"kn", 1e6}, {"ks", 1e6}, {"pb_kn", 1e9}, {"pb_ks", 1e9},
-                                                       {"pb_ten", pb_ten}, {"pb_coh", pb_coh}}}}}},
-                  {"timestep", {{"fixed", 1e-5}}}};
-    auto sim = std::make_unique<Simulation>(scene);
-    sim->set_quiet(true);
-    REQUIRE(sim->world().bond(0, 0, 1e-9) == 1);
-    return sim;
-}
+using testing_support::bonded_pair;
 
 } // namespace
 

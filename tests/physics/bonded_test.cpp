@@ -1,6 +1,7 @@
 // Parallel bonds (issue: bonded structures): a single bond against its
 // analytical force and strength, the cantilever against beam theory, and a
 // brittle plate hit by a fast ball.
+#include "../support/bonded_pair.hpp"
 #include "simulation.hpp"
 
 #include "../support/cantilever.hpp"
@@ -14,22 +15,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// Two bonded discs (r = 1 mm, touching); ball 1 is driven at `velocity`.
-std::unique_ptr<Simulation> bonded_pair(const json& velocity, double pb_ten, double pb_coh) {
-    json scene = {{"dimension", 2},
-                  {"plugins", {"linear_pbond"}},
-                  {"bodies", {{{"type", "ball"}, {"position", {0, 0}}, {"radius", 0.001}, {"density", 2500}, {"fix", {"all"}}},
-                              {{"type", "ball"}, {"position", {0.002, 0}}, {"radius", 0.001}, {"density", 2500},
-                               {"fix", {"all"}}, {"velocity", velocity}}}},
-                  {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear_pbond"},
-                                       {"properties", {{"kn", 1e6}, {"ks", 1e6}, {"pb_kn", 1e9}, {"pb_ks", 1e9},
-                                                       {"pb_ten", pb_ten}, {"pb_coh", pb_coh}}}}}},
-                  {"timestep", {{"fixed", 1e-5}}}};
-    auto sim = std::make_unique<Simulation>(scene);
-    sim->set_quiet(true);
-    REQUIRE(sim->world().bond(0, 0, 1e-9) == 1);
-    return sim;
-}
+using testing_support::bonded_pair;
 
 } // namespace
 
