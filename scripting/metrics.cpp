@@ -2,15 +2,18 @@
 // run from its recorded histories and written to summary.json, so that
 // `plab sweep` can set error against cost (issue 7). Two kinds:
 //   analytical: a reduction of one history (final, change = final - first,
-//     max, min, mean, time_mean, max_abs) times `scale`, optionally over the
-//     samples whose time lies in [from, to] (a terminal velocity is the mean
-//     over a plateau), against an exact value: error = |value - exact| / |exact|;
+//     max, min, time_of_max, mean, time_mean, max_abs) times `scale`,
+//     optionally over the samples whose time lies in [from, to] (a terminal
+//     velocity is the mean over a plateau), against an exact value:
+//     error = |value - exact| / |exact|;
 //     with `against`, the exact value is another history reduced alike;
 //   reference:  a history against a reference curve (a CSV beside
 //     the scene or in validation/reference), both scaled to the reference's
 //     variables: error = mean |sim - ref| / |ref| over the reference points
 //     inside the run (and `x_max`), with the max beside it; or their RMS
-//     difference, or how far the run leads ("norm").
+//     difference (also over the curve's peak), or how far the run leads
+//     ("norm"); with `reduce`, the history's peak or its time against the
+//     curve's: error = |value - reference|.
 #include "metrics.hpp"
 #include "validation.hpp"
 #include "variables.hpp"
@@ -33,6 +36,7 @@ double reduce(const Node& n, const std::vector<double>& h, const std::vector<dou
     if (op == "change") return h.back() - h.front();  // a displacement from the first sample
     if (op == "max") return *std::max_element(h.begin(), h.end());
     if (op == "min") return *std::min_element(h.begin(), h.end());
+    if (op == "time_of_max") return t[std::size_t(std::max_element(h.begin(), h.end()) - h.begin())];  // a peak's time (the first)
     if (op == "time_below_zero") {  // e.g. a surface gap: how long the first contact lasted, crossings interpolated
         const auto cross = [&](std::size_t k) { return t[k - 1] + (t[k] - t[k - 1]) * h[k - 1] / (h[k - 1] - h[k]); };
         std::size_t in = 1;
@@ -178,8 +182,9 @@ std::vector<double> named_history(const Node& where, const std::string& name, co
 // "scale", over |the first sample of the history "relative_to"| if given
 // (e.g. an energy drift over the initial kinetic energy).
 double reduced(const Node& m, const Samples& s, const Simulation& sim) {
-    const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "mean", "time_mean", "max_abs",
-                                                                    "time_below_zero", "drift", "max_deviation"})
+    const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "time_of_max", "mean",
+                                                                    "time_mean", "max_abs", "time_below_zero", "drift",
+                                                                    "max_deviation"})
                                            : "final";
     double value = (op == "time_mean" ? time_mean(s) : reduce(m, s.h, s.t, op)) * m.number_or("scale", 1.0);
     if (m.has("relative_to")) {
@@ -231,18 +236,20 @@ json event_metric(const Node& m, const Samples& s, const std::string& scene_dir,
 // The history against a reference curve at the reference points inside the
 // run. "norm": mean (default) of |sim - ref| / |ref|, with the max beside
 // it; "rms", the root mean square of sim - ref in the reference's units (a
-// curve through zero, e.g. a velocity from rest); "lead", the largest
+// curve through zero, e.g. a velocity from rest); "rms_over_peak", that over
+// the curve's largest |y| (also past the run's end); "lead", the largest
 // (sim - ref) / |ref|, 0 when the run never leads (a front bounded from
 // above by a faster one).
 json curve_metric(const Node& m, const Samples& s, const std::string& scene_dir, json out) {
     const double xs = m.number_or("x_scale", 1.0), ys = m.number_or("y_scale", 1.0);
-    const std::string norm = m.has("norm") ? m.at("norm").choice({"mean", "rms", "lead"}) : "mean";
+    const std::string norm = m.has("norm") ? m.at("norm").choice({"mean", "rms", "rms_over_peak", "lead"}) : "mean";
     std::vector<double> x(s.t.size()), y(s.h.size());
     for (std::size_t k = 0; k < s.t.size(); ++k) x[k] = s.t[k] * xs;
     for (std::size_t k = 0; k < s.h.size(); ++k) y[k] = s.h[k] * ys;
-    double sum = 0, worst = 0, lead = 0, squares = 0;
+    double sum = 0, worst = 0, lead = 0, squares = 0, peak = 0;
     std::size_t n = 0, inside = 0;
     for (const auto& [rx, ry] : reference_curve(m.at("reference"), scene_dir)) {
+        peak = std::max(peak, std::fabs(ry));
         const double sim_y = interpolate(x, y, rx);
         if (std::isnan(sim_y)) continue;
         squares += (sim_y - ry) * (sim_y - ry);
@@ -254,13 +261,36 @@ json curve_metric(const Node& m, const Samples& s, const std::string& scene_dir,
         lead = std::max(lead, (sim_y - ry) / std::fabs(ry));
         ++n;
     }
-    const std::size_t points = norm == "rms" ? inside : n;
+    const bool rms = norm == "rms" || norm == "rms_over_peak";
+    const std::size_t points = rms ? inside : n;
     out["points"] = points;
     out["error"] = points == 0        ? std::nan("")
-                   : norm == "rms"  ? std::sqrt(squares / double(points))
+                   : rms            ? std::sqrt(squares / double(points)) / (norm == "rms" ? 1.0 : peak)
                    : norm == "lead" ? lead
                                     : sum / double(points);
     out["max_error"] = worst;
+    return out;
+}
+
+// The history's peak or its time ("reduce": max, min, time_of_max) against
+// the same of the whole reference curve: error = |value - reference| in the
+// reference's units (a peak displacement, or when it came).
+json reduced_against_reference(const Node& m, const Samples& s, const std::string& scene_dir, json out) {
+    const std::string op = m.at("reduce").choice({"max", "min", "time_of_max"});
+    const double xs = m.number_or("x_scale", 1.0), ys = m.number_or("y_scale", 1.0);
+    std::vector<double> x, y, rx, ry;
+    for (std::size_t k = 0; k < s.h.size(); ++k) {
+        x.push_back(s.t[k] * xs);
+        y.push_back(s.h[k] * ys);
+    }
+    for (const auto& [px, py] : reference_curve(m.at("reference"), scene_dir)) {
+        rx.push_back(px);
+        ry.push_back(py);
+    }
+    const double value = reduce(m, y, x, op), reference = reduce(m.at("reference"), ry, rx, op);
+    out["value"] = value;
+    out["reference"] = reference;
+    out["error"] = std::fabs(value - reference);
     return out;
 }
 
@@ -287,6 +317,7 @@ json one_metric(const Node& m, const Simulation& sim, const std::string& scene_d
         return out;
     }
     if (m.has("event")) return event_metric(m, s, scene_dir, std::move(out));
+    if (m.has("reduce")) return reduced_against_reference(m, s, scene_dir, std::move(out));
     return curve_metric(m, s, scene_dir, std::move(out));
 }
 
