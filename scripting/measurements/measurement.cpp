@@ -19,6 +19,7 @@ const std::map<std::string, MeasurementInfo>& measurements() {
         register_sph_measurements(m);
         register_coupling_measurements(m);
         register_bonded_measurements(m);
+        register_structure_measurements(m);
         return m;
     }();
     return all;

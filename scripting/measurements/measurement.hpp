@@ -39,5 +39,6 @@ int measured_group(const Node& with, const World& w);
 void register_sph_measurements(std::map<std::string, MeasurementInfo>& into);
 void register_coupling_measurements(std::map<std::string, MeasurementInfo>& into);
 void register_bonded_measurements(std::map<std::string, MeasurementInfo>& into);
+void register_structure_measurements(std::map<std::string, MeasurementInfo>& into);
 
 } // namespace plab
