@@ -37,28 +37,4 @@ struct ElasticGateResult {
 nlohmann::json elastic_gate_scene(const ElasticGateSpec& s);
 ElasticGateResult elastic_gate(const ElasticGateSpec& s);
 
-// Thesis §7.4: the gate clamped at the bottom with a lowered strength.
-struct GateFractureSpec {
-    double spacing = 0.0025, gate_radius = 0.000625;  // as ElasticGateSpec; R 1.25 mm (2-1-2 rows) is a hinge chain: refused (< 3 balls across)
-    // structure_sph_state: 2, extrapolated without the balls' vibration (1 blows up a free-standing gate)
-    int pressure_mode = 2;
-    // sigma_ult of the hexagonal calibration, Pa: its shear strength (eq. 44, 0.0037 sigma_ult at nu 0.33,
-    // 5.2 kPa) just below the peak clamp shear stress of an unbreakable gate (5.5-6 kPa at 0.11-0.14 s)
-    double strength = 1.4e6;
-    double density_band = 0;  // sph_eos density band; 0: its default (5 %)
-    double end_time = 0.2;   // s
-};
-
-struct GateFractureResult {
-    long bonds = 0, broken = 0, steps = 0;
-    double first_break_time = -1, first_break_y = -1;  // s, m
-    int first_break_mode = 0;                           // PLAB_BREAK_TENSION / PLAB_BREAK_SHEAR
-    double min_x = 0, max_x = 0, min_y = 0;             // extent of the gate balls' centres over the run, m
-    bool penetrated = false;                            // a centre crossed a wall surface
-    double cpu_seconds = 0;
-};
-
-nlohmann::json gate_fracture_scene(const GateFractureSpec& s);
-GateFractureResult gate_fracture(const GateFractureSpec& s);
-
 } // namespace plab::cases

@@ -9,6 +9,7 @@
 #include <cases/coupling_cases.hpp>
 #include <cases/sph_cases.hpp>
 #include "../support/case_scene.hpp"
+#include "../support/study_run.hpp"
 #include <measurements/measurement.hpp>
 
 #include <catch2/catch.hpp>
@@ -217,7 +218,6 @@ TEST_CASE("elastic gate study: free-end displacement against Antoci 2007", "[.el
 TEST_CASE("write the coupled examples", "[.write_examples]") {
     const std::string dir = std::string(PLAB_SOURCE_DIR) + "/examples/coupled/";
     std::ofstream(dir + "elastic_gate.json") << cases::elastic_gate_scene(cases::ElasticGateSpec{}).dump(1) << "\n";
-    std::ofstream(dir + "gate_fracture.json") << cases::gate_fracture_scene(cases::GateFractureSpec{}).dump(1) << "\n";
 }
 
 TEST_CASE("a structure floor in the SPH sums carries the weight of the water above it", "[coupling]") {
@@ -274,19 +274,23 @@ TEST_CASE("a structure floor in the SPH sums carries the weight of the water abo
     }
 }
 
-// Not part of the test run (hidden tag): gate fracture at chosen settings,
-// PLAB_STUDY="dp:R:end:strength[:pressure_mode[:density_band]]", comma-separated.
+// Not part of the test run (hidden tag): the gate fracture case's scene
+// (validation/gate_fracture) at chosen settings,
+// PLAB_STUDY="dp:R:end:strength[:pressure_mode[:density_band]]", comma-separated; band 0: the scene's (5 %).
 TEST_CASE("gate fracture study", "[.gate_fracture_study]") {
+    using namespace testing_support;
     for (const auto& v : study_points("0.005:0.000833333:0.15:1.4e6", {0.005, 0.000833333, 0.15, 1.4e6, 2, 0})) {
-        cases::GateFractureSpec s;
-        s.spacing = v[0]; s.gate_radius = v[1]; s.end_time = v[2]; s.strength = v[3]; s.pressure_mode = int(v[4]);
-        s.density_band = v[5];
-        const cases::GateFractureResult r = cases::gate_fracture(s);
-        std::printf("dp %.4f R %.5f strength %.3g: %ld of %ld broken, first at %.3f s y %.4f mode %d; x [%.4f, %.4f], min y %.4f, "
-                    "penetrated %d; %ld steps, %.0f s CPU\n",
-                    s.spacing, s.gate_radius, s.strength, r.broken, r.bonds, r.first_break_time, r.first_break_y,
-                    r.first_break_mode, r.min_x,
-                    r.max_x, r.min_y, int(r.penetrated), r.steps, r.cpu_seconds);
+        std::vector<std::pair<std::string, json>> sets = {{"variables.dp", v[0]}, {"variables.R", v[1]}, {"variables.end_time", v[2]},
+                                                          {"variables.strength", v[3]}, {"variables.pressure_mode", int(v[4])}};
+        if (v[5] > 0) sets.emplace_back("variables.density_band", v[5]);
+        Simulation sim(case_scene("gate_fracture", sets), case_dir("gate_fracture"));
+        const std::string stopped = run_study(sim);
+        std::printf("dp %.4f R %.5f strength %.3g: %.0f of %.0f broken, first at %.3f s y %.4f mode %.0f; x [%.4f, %.4f], min y %.4f, "
+                    "wall clearance %.4f m; %llu steps, %.0f s CPU%s\n",
+                    v[0], v[1], v[3], metric(sim, "broken"), metric(sim, "bonds"), metric(sim, "first_break_time"),
+                    metric(sim, "first_break_y"), metric(sim, "first_break_mode"), metric(sim, "gate_min_x"), metric(sim, "gate_max_x"),
+                    metric(sim, "gate_min_y"), metric(sim, "wall_clearance"), static_cast<unsigned long long>(sim.world().step_count),
+                    sim.summary()["cpu_seconds"].get<double>(), stopped.c_str());
         std::fflush(stdout);
     }
 }
