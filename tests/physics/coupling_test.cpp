@@ -6,7 +6,6 @@
 #include "simulation.hpp"
 
 #include "../../plugins/coupling_fluid_particle/drag_law.hpp"
-#include <cases/coupling_cases.hpp>
 #include <cases/sph_cases.hpp>
 #include "../support/case_scene.hpp"
 #include "../support/study_run.hpp"
@@ -17,7 +16,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include "study_points.hpp"
@@ -195,29 +193,29 @@ TEST_CASE("sedimentation study: terminal velocity against d/dp and the 2D drag r
     }
 }
 
-// Not part of the test run (hidden tag): the elastic gate at chosen
-// resolutions, PLAB_STUDY="dp:R:end[:pressure_mode]", comma-separated.
+// Not part of the test run (hidden tag): the elastic gate case's scene
+// (validation/elastic_gate) at chosen resolutions,
+// PLAB_STUDY="dp:R:end[:pressure_mode]", comma-separated.
 TEST_CASE("elastic gate study: free-end displacement against Antoci 2007", "[.elastic_gate_study]") {
+    using namespace testing_support;
     for (const auto& v : study_points("0.0025:0.000625:0.4", {0.0025, 0.000625, 0.4, 1})) {
-        cases::ElasticGateSpec s;
-        s.spacing = v[0]; s.gate_radius = v[1]; s.end_time = v[2]; s.pressure_mode = int(v[3]);
-        const cases::ElasticGateResult r = cases::elastic_gate(s);
+        Simulation sim(case_scene("elastic_gate", {{"variables.dp", v[0]}, {"variables.R", v[1]}, {"variables.end_time", v[2]},
+                                                   {"variables.pressure_mode", int(v[3])}}),
+                       case_dir("elastic_gate"));
+        const std::string stopped = run_study(sim);
         std::printf("dp %.5f R %.5f mode %d: %d fluid, %d gate balls; x RMS %.1f %% of peak, peak %.4f m at %.3f s "
-                    "(exp %.4f at %.3f); y RMS %.1f %%; %ld broken; %ld steps, %.0f s CPU\n",
-                    s.spacing, s.gate_radius, s.pressure_mode, r.fluid, r.gate, 100 * r.rms_x_rel, r.peak_x,
-                    r.peak_time, r.peak_x_ref, r.peak_time_ref, 100 * r.rms_y_rel, r.broken, r.steps, r.cpu_seconds);
-        if (std::getenv("PLAB_STUDY_HISTORY"))
-            for (std::size_t k = 0; k < r.t.size(); k += 100)
-                std::printf("  t %.4f dx %.5f dy %.5f\n", r.t[k], r.dx[k], r.dy[k]);
+                    "(exp %.4f at %.3f); y RMS %.1f %%; %.0f broken; %llu steps, %.0f s CPU%s\n",
+                    v[0], v[1], int(v[3]), group_count(sim, "fluid"), group_count(sim, "gate"), 100 * metric(sim, "x_rms", "error"),
+                    metric(sim, "peak_x"), metric(sim, "peak_time"), metric(sim, "peak_x", "reference"),
+                    metric(sim, "peak_time", "reference"), 100 * metric(sim, "y_rms", "error"), metric(sim, "broken"),
+                    static_cast<unsigned long long>(sim.world().step_count), sim.summary()["cpu_seconds"].get<double>(),
+                    stopped.c_str());
+        if (std::getenv("PLAB_STUDY_HISTORY")) {
+            const std::vector<double> t = sim.history("time"), dx = sim.history("tip_dx"), dy = sim.history("tip_dy");
+            for (std::size_t k = 0; k < t.size(); k += 100) std::printf("  t %.4f dx %.5f dy %.5f\n", t[k], dx[k], dy[k]);
+        }
         std::fflush(stdout);
     }
-}
-
-// Not part of the test run (hidden tag): writes examples/coupled/*.json from
-// the validation cases' scene builders, so the examples are the cases' scenes.
-TEST_CASE("write the coupled examples", "[.write_examples]") {
-    const std::string dir = std::string(PLAB_SOURCE_DIR) + "/examples/coupled/";
-    std::ofstream(dir + "elastic_gate.json") << cases::elastic_gate_scene(cases::ElasticGateSpec{}).dump(1) << "\n";
 }
 
 TEST_CASE("a structure floor in the SPH sums carries the weight of the water above it", "[coupling]") {
