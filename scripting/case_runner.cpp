@@ -220,7 +220,6 @@ CaseResult run_case(const fs::path& dir, const json& spec, bool quick) {
     for (std::size_t k = 0; k < rn.size(); ++k)
         if (in_mode(rn.at(k), quick)) runs.push_back(run_one(dir, rn.at(k)));
     CaseResult result;
-    result.judged_by_checks = true;
     for (const RunRecord& r : runs) result.details += run_line(r);
     const Node cn = root.at("checks");
     cn.expect_array();
@@ -251,19 +250,21 @@ CaseResult run_case(const fs::path& dir, const json& spec, bool quick) {
 
 } // namespace
 
-void register_data_cases(const std::string& folder) {
+std::vector<ValidationCase> data_cases(const std::string& folder) {
     std::error_code ec;
     std::vector<fs::path> dirs;
     for (const auto& e : fs::directory_iterator(folder, ec))
         if (fs::exists(e.path() / "case.json")) dirs.push_back(e.path());
     std::sort(dirs.begin(), dirs.end());
+    std::vector<ValidationCase> cases;
     for (const fs::path& dir : dirs) {
         const json spec = read_scene_file((dir / "case.json").string());
         const Node root(spec, (dir / "case.json").string());
         root.allow_keys({"description", "runs", "checks", "plots", "note"});
-        register_case({dir.filename().string(), root.at("description").string(),
-                       [dir, spec](bool quick) { return run_case(dir, spec, quick); }});
+        cases.push_back({dir.filename().string(), root.at("description").string(),
+                         [dir, spec](bool quick) { return run_case(dir, spec, quick); }});
     }
+    return cases;
 }
 
 } // namespace plab

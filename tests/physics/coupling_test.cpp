@@ -6,7 +6,7 @@
 #include "simulation.hpp"
 
 #include "../../plugins/coupling_fluid_particle/drag_law.hpp"
-#include <cases/sph_cases.hpp>
+#include "../support/sph_boundary.hpp"
 #include "../support/case_scene.hpp"
 #include "../support/study_run.hpp"
 #include <measurements/measurement.hpp>
@@ -233,7 +233,7 @@ TEST_CASE("a structure floor in the SPH sums carries the weight of the water abo
     wall_pass.update({{"smoothing_length", h}, {"kernel", 0}, {"boundary_group", 1}, {"gravity_y", -g}});
     floor_pass.update({{"smoothing_length", h}, {"kernel", 0}, {"structure_group", 2}, {"fluid_group", 0},
                        {"pressure_mode", 1}, {"gravity_y", -g}});
-    json floor = cases::boundary_block(-t, -t, 0.1 + t, 0, db);
+    json floor = testing_support::boundary_block(-t, -t, 0.1 + t, 0, db);
     floor["group"] = "floor";
     const json scene = {
         {"dimension", 2},
@@ -242,7 +242,7 @@ TEST_CASE("a structure floor in the SPH sums carries the weight of the water abo
         {"bodies",
          {{{"type", "lattice"}, {"group", "fluid"}, {"packing", "square"}, {"box", {{"min", {0, 0}}, {"max", {0.1, 0.1}}}},
            {"radius", dp / 2}, {"spacing", dp}, {"mass", 1000 * dp * dp}, {"fix", {"rotation"}}},
-          cases::boundary_block(-t, 0, 0, 0.12, db), cases::boundary_block(0.1, 0, 0.1 + t, 0.12, db), floor}},
+          testing_support::boundary_block(-t, 0, 0, 0.12, db), testing_support::boundary_block(0.1, 0, 0.1 + t, 0.12, db), floor}},
         {"contact_models",
          {{{"groups", {"fluid", "fluid"}}, {"model", "sph"}, {"properties", sph}},
           {{"groups", {"fluid", "boundary"}}, {"model", "sph"}, {"properties", sph}},

@@ -5,7 +5,8 @@
 // density between neighbours without creating volume.
 #include "simulation.hpp"
 
-#include <cases/sph_cases.hpp>
+#include "../support/sph_boundary.hpp"
+#include "../support/case_scene.hpp"
 #include "../support/static_tank.hpp"
 
 #include <catch2/catch.hpp>
@@ -78,7 +79,7 @@ TEST_CASE("a no-slip wall set moving drags the fluid as in Stokes' first problem
     // u(y, t) = U erfc(y / (2 sqrt(nu t))), y from the wall surface.
     const double dp = 0.0025, L = 0.2, H = 0.05, U = 0.01, mu = 1.0, nu = mu / 1000, t_end = 0.1;
     const double layers = 6 * dp / 2;  // covers the support 2h = 2.6 dp
-    const json wall = cases::boundary_block(-0.05, -layers, L + 0.05, 0, dp / 2);
+    const json wall = testing_support::boundary_block(-0.05, -layers, L + 0.05, 0, dp / 2);
     const json sph = {{"viscosity", 0}, {"mu", mu}};
     json scene = fluid_scene(box(0, 0, L, H), dp, json::array({wall}), sph, 1.0, 1);
     scene["commands"] = {{{"set", {{"group", "boundary"}, {"velocity", {U, 0}}}}}};
@@ -117,9 +118,9 @@ TEST_CASE("a piston pushing into fluid at rest feels the water-hammer pressure a
     // pressure is the acoustic rho0 c0 u (Joukowsky).
     // dp = H/20: the plateau converges to rho0 c0 u from below (0.89 of it at H/10, 0.96 at H/20)
     const double dp = 0.005, L = 0.4, H = 0.1, c0 = 20, u = 0.1, t = 3 * dp;  // walls cover 2h = 2.6 dp
-    const json blocks = {cases::boundary_block(-t, -t, L + 0.1, 0, dp / 2),
-                         cases::boundary_block(-t, H, L + 0.1, H + t, dp / 2),
-                         cases::boundary_block(-t, 0, 0, H, dp / 2)};  // the piston
+    const json blocks = {testing_support::boundary_block(-t, -t, L + 0.1, 0, dp / 2),
+                         testing_support::boundary_block(-t, H, L + 0.1, H + t, dp / 2),
+                         testing_support::boundary_block(-t, 0, 0, H, dp / 2)};  // the piston
     const json sph = {{"viscosity", 1}, {"alpha", 0.1}};
     json scene = fluid_scene(box(0, 0, L, H), dp, blocks, sph, c0, 1);
     // the scene's `set` command gives the piston balls (fixed: they keep it) their velocity
@@ -156,9 +157,7 @@ TEST_CASE("a piston pushing into fluid at rest feels the water-hammer pressure a
 }
 
 TEST_CASE("dam break: fluid mass is exact and its momentum changes by the impulse of gravity and walls", "[sph]") {
-    cases::DamBreakSpec s;  // a/dp 10, the quick validation run
-    s.spacing = 0.01;
-    Simulation sim(cases::dam_break_scene(s));
+    Simulation sim(testing_support::case_scene("dam_break", {{"variables.dp", 0.01}}));  // a/dp 10, the quick run
     sim.set_quiet(true);
     World& w = sim.world();
     const int fluid = w.find_group("fluid"), boundary = w.find_group("boundary");

@@ -4,7 +4,7 @@
 // garbage. Short runs; the table of outcomes is in docs/stability.md.
 #include "simulation.hpp"
 
-#include <cases/sph_cases.hpp>
+#include "../support/sph_boundary.hpp"
 #include "../support/case_scene.hpp"
 
 #include <catch2/catch.hpp>
@@ -296,7 +296,7 @@ json small_dam_break(double mach_factor, double jitter = 0, double scale = 1) {
     const double t = std::ceil(2 * h / db) * db, length = 0.2 * scale;
     const double c0 = mach_factor * std::sqrt(2 * g * H);
     const json sph = {{"smoothing_length", h}, {"kernel", 0}, {"speed_of_sound", c0}, {"viscosity", 1}, {"alpha", 0.1}};
-    auto block = [db](double x0, double y0, double x1, double y1) { return cases::boundary_block(x0, y0, x1, y1, db); };
+    auto block = [db](double x0, double y0, double x1, double y1) { return testing_support::boundary_block(x0, y0, x1, y1, db); };
     json fluid = {{"type", "lattice"}, {"group", "fluid"}, {"packing", "square"},
                   {"box", {{"min", {0, 0}}, {"max", {a, H}}}}, {"radius", dp / 2}, {"spacing", dp},
                   {"mass", 1000 * dp * dp}, {"fix", {"rotation"}}};
