@@ -304,16 +304,4 @@ void apply_override(json& scene, const std::string& assignment) {
     *node = value;
 }
 
-json read_scene_file(const std::string& path) {
-    std::ifstream f(path);
-    if (!f) throw InputError(path, "cannot open the scene file");
-    std::stringstream buf;
-    buf << f.rdbuf();
-    try {
-        return json::parse(buf.str());
-    } catch (const json::parse_error& e) {
-        throw InputError(path, std::string("malformed JSON: ") + e.what());
-    }
-}
-
 } // namespace plab
