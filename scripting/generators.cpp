@@ -25,6 +25,17 @@ double density_from_mass(const Node& n, int dim, double radius) {
     return mass / Bodies::mass_of(dim, radius, 1.0);
 }
 
+// A mass no body in a simulation has (below an atom's, above a mountain's)
+// is a unit slip; caught here rather than as NaN forces in the first step.
+void check_mass(const Node& n, int dim, double radius, double density) {
+    const double mass = Bodies::mass_of(dim, radius, density);
+    if (mass >= 1e-30 && mass <= 1e30) return;
+    std::ostringstream s;
+    s << "radius " << radius << " m and density " << density << " kg/m" << (dim == 2 ? "2 (a disc 1 m thick)" : "3")
+      << " give a ball mass of " << mass << " kg: outside [1e-30, 1e30] kg";
+    n.at(n.has("mass") ? "mass" : "radius").fail(s.str());
+}
+
 Material read_material(const Node& n, World& w, bool radius_range, bool allow_mass = false) {
     Material m;
     const Node r = n.at("radius");
@@ -37,6 +48,8 @@ Material read_material(const Node& n, World& w, bool radius_range, bool allow_ma
         m.radius_lo = m.radius_hi = r.positive();
     }
     m.density = allow_mass && n.has("mass") ? density_from_mass(n, w.dim, m.radius_lo) : n.at("density").positive();
+    check_mass(n, w.dim, m.radius_lo, m.density);
+    check_mass(n, w.dim, m.radius_hi, m.density);
     m.damping = n.number_or("local_damping", 0.0, 0.0, 1.0, false, true);
     m.viscous = n.number_or("viscous_damping", 0.0, 0.0, kInf, false, true);
     m.group = w.group_index(n.string_or("group", "balls"));
@@ -79,10 +92,26 @@ void single_ball(const Node& n, World& w) {
     add(w, m, n.at("position").vec(w.dim), m.radius_lo, n.vec_or("velocity", w.dim, Vec::Zero()), spin);
 }
 
+// About what a ball costs in a run (its columns, contacts, neighbour
+// lists: bench/peers/memory.py measured 1004 B at 1e5 balls).
+constexpr double kBytesPerBall = 1000;
+
+// Refused before anything is allocated: a generator asking for more balls
+// than the scene's limit, with the count and the memory it would take.
+void check_body_budget(const Node& n, double count, const World& w, const GeneratorLimits& limits) {
+    const double total = double(w.bodies.size()) + count;
+    if (total <= double(limits.max_bodies)) return;
+    std::ostringstream s;
+    s << "would make " << count << " balls (" << total << " in the scene so far), about " << total * kBytesPerBall
+      << " bytes of memory; above limits.max_bodies = " << limits.max_bodies
+      << ": raise it in the scene's \"limits\" if the machine has the memory";
+    n.fail(s.str());
+}
+
 // Regular packings filling a box with ball centres at least r from its faces:
 // 2D square / hexagonal (rows r√3 apart, odd rows shifted by r); 3D cubic /
 // hcp (layers 2r√(2/3) apart, ABAB stacking). Optional jitter for benchmarks.
-Box lattice(const Node& n, World& w) {
+Box lattice(const Node& n, World& w, const GeneratorLimits& limits) {
     n.allow_keys({"type", "group", "box", "radius", "density", "mass", "packing", "spacing", "fix", "local_damping",
                   "viscous_damping", "jitter", "velocity"});
     const Material m = read_material(n, w, false, true);
@@ -108,7 +137,10 @@ Box lattice(const Node& n, World& w) {
     const double dz = packing == "hcp" ? a * std::sqrt(2.0 / 3.0) : a;
     const Vec lo = box.lo + Vec::Constant(r), hi = box.hi - Vec::Constant(r);
     // counts tolerate round-off: a box sized for exactly n rows holds n rows
-    const long nz = w.dim == 3 ? long(std::floor((hi.z() - lo.z()) / dz + 1e-6)) + 1 : 1;
+    const double rows = std::floor((hi.y() - lo.y()) / dy + 1e-6) + 1, columns = std::floor((hi.x() - lo.x()) / a + 1e-6) + 1;
+    const double layers = w.dim == 3 ? std::floor((hi.z() - lo.z()) / dz + 1e-6) + 1 : 1;
+    check_body_budget(n, std::max(0.0, rows) * std::max(0.0, columns) * std::max(0.0, layers), w, limits);
+    const long nz = long(layers);
     std::size_t count = 0;
     for (long k = 0; k < nz; ++k) {
         const double layer_x = packing == "hcp" && (k % 2) ? a / 2 : 0.0;
@@ -153,11 +185,12 @@ void check_fill_possible(const Node& count_node, long count, double radius, cons
 }
 
 // Random non-overlapping fill by rejection on a background grid.
-Box random_fill(const Node& n, World& w) {
+Box random_fill(const Node& n, World& w, const GeneratorLimits& limits) {
     n.allow_keys({"type", "group", "box", "radius", "density", "count", "seed", "fix", "local_damping", "viscous_damping", "max_attempts"});
     const Material m = read_material(n, w, true);
     const Box box = read_box(n.at("box"), w.dim);
     const long count = n.at("count").integer(1, 100000000);
+    check_body_budget(n.at("count"), double(count), w, limits);
     check_fill_possible(n.at("count"), count, m.radius_lo, box, w.dim);
     Rng rng(std::uint64_t(n.has("seed") ? n.at("seed").integer(0, 1L << 40) : 1));
     const long max_attempts = n.has("max_attempts") ? n.at("max_attempts").integer(1, 1L << 40) : 1000 * count;
@@ -220,14 +253,14 @@ std::uint8_t read_fixity(const Node& n) {
     return f;
 }
 
-std::optional<Box> generate_bodies(const Node& n, World& w) {
+std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits) {
     const std::string type = n.at("type").choice({"ball", "lattice", "random_fill"});
     if (type == "ball") {
         single_ball(n, w);
         return std::nullopt;
     }
     w.mark_dirty();
-    return type == "lattice" ? lattice(n, w) : random_fill(n, w);
+    return type == "lattice" ? lattice(n, w, limits) : random_fill(n, w, limits);
 }
 
 double read_property(const Node& v, const plab_property_desc& d) {

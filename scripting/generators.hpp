@@ -38,10 +38,17 @@ private:
     std::uint64_t s_;
 };
 
+// The scene's "limits": what a generator may make before it is refused.
+struct GeneratorLimits {
+    long max_bodies = 10000000;  // ~10 GB at about 1 kB a ball
+};
+
 // Adds the balls of one `bodies[i]` entry; returns the region it filled
 // (lattice and random fill) so overlapping regions can be refused.
-std::optional<Box> generate_bodies(const Node& n, World& w);
+std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits = {});
 void generate_wall(const Node& n, World& w);
+// Refuses two facets in the same place (the walls at `walls`, by index).
+void check_coincident_facets(const Node& walls, const World& w);
 
 // Property values in declaration order: scene values checked against the
 // declared range, defaults for the rest; an unknown key lists the known ones.

@@ -50,7 +50,7 @@ Simulation::~Simulation() = default;
 void Simulation::load(const Node& root) {
     root.allow_keys({"description", "dimension", "domain", "gravity", "plugins", "bodies", "walls", "materials",
                      "contact_models", "passes", "timestep", "skin", "histories", "output", "commands", "validation",
-                     "stability", "metrics", "variables"});
+                     "stability", "metrics", "variables", "limits"});
     const int dim = int(root.at("dimension").integer(2, 3));
     world_ = std::make_unique<World>(dim, host_);
     if (root.has("domain")) {
@@ -67,6 +67,11 @@ void Simulation::load(const Node& root) {
     load_stability(root.has("stability") ? root.at("stability") : Node(json::object(), "scene.stability"));
     if (root.has("skin")) world_->skin = root.at("skin").number(0.0, kInf, false, true);
     load_plugins(root.has("plugins") ? root.at("plugins") : Node(json::array(), "scene.plugins"));
+    if (root.has("limits")) {
+        const Node l = root.at("limits");
+        l.allow_keys({"max_bodies"});
+        limits_.max_bodies = l.at("max_bodies").integer(1, 1L << 40);
+    }
     if (root.has("bodies")) load_bodies(root.at("bodies"));
     if (root.has("walls")) load_walls(root.at("walls"));
     if (root.has("materials")) materials_->load(root.at("materials"), *world_);
@@ -120,7 +125,7 @@ void Simulation::load_bodies(const Node& n) {
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node g = n.at(i);
         const std::size_t before = world_->bodies.size();
-        const std::optional<Box> region = generate_bodies(g, *world_);
+        const std::optional<Box> region = generate_bodies(g, *world_, limits_);
         if (region) {
             for (const auto& [other, where] : regions)
                 if (region->overlaps(other, world_->dim)) {
@@ -140,6 +145,7 @@ void Simulation::load_bodies(const Node& n) {
 void Simulation::load_walls(const Node& n) {
     n.expect_array();
     for (std::size_t i = 0; i < n.size(); ++i) generate_wall(n.at(i), *world_);
+    check_coincident_facets(n, *world_);
 }
 
 // Rules apply in order; a later rule overrides an earlier one for the group

@@ -2,6 +2,7 @@
 // The scene format is documented in docs/scene-format.md.
 #pragma once
 
+#include "generators.hpp"
 #include "json_reader.hpp"
 #include "pictures.hpp"
 
@@ -23,7 +24,10 @@ class CheckpointWriter;
 // parses (numbers, arrays, true/false), else as a string. The path must
 // exist up to its last key (a typo is an error, not a new key).
 void apply_override(json& scene, const std::string& assignment);
+// A scene file: a regular file below PLAB_MAX_SCENE_BYTES (256 MiB), JSON
+// nested at most 64 deep; errors name the file and the JSON path.
 json read_scene_file(const std::string& path);
+json parse_scene_text(const std::string& text, const std::string& name);
 
 struct HistoryColumn {
     std::string name;
@@ -151,6 +155,7 @@ private:
     void keep_last_good();
     std::string write_last_good() const;  // its path, or "" when none is kept
     void after_step();
+    void check_run_length();
     std::vector<double> sample_history_row() const;
     // what after_step() writes at the world's step and time
     struct DueOutputs {
@@ -162,6 +167,7 @@ private:
     void write_outputs() const;
     void check_domain(const std::string& where, std::size_t first) const;
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
+    GeneratorLimits limits_;
 };
 
 // SIGINT/SIGTERM: the handler only records the signal; the run finishes
