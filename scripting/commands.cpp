@@ -384,7 +384,9 @@ void Simulation::load_commands(const Node& n) {
                 cmd.value = s.at("time").positive();
             } else {
                 cmd.kind = Command::solve_ratio;
-                cmd.value = s.at("ratio").positive();
+                // below 1e-12 the force sums' round-off (~1e-16 of each
+                // contact force, summed) keeps the ratio from ever getting there
+                cmd.value = s.at("ratio").number(1e-12, 1.0);
             }
             cmd.max_cycles = s.has("max_cycles") ? s.at("max_cycles").integer(1, 1L << 50) : 10000000;
         } else if (c.has("set")) {
@@ -442,6 +444,13 @@ std::vector<double> Simulation::sample_history_row() const {
     return row;
 }
 
+// The first time next + k * interval after `time` (an interval too small to
+// move the sum is refused before the run, check_run_length()).
+static double next_due(double next, double interval, double time) {
+    const double k = std::floor((time + 1e-12 - next) / interval) + 1;
+    return std::max(next + std::max(k, 1.0) * interval, std::nextafter(time, kInf));
+}
+
 void Simulation::after_step() {
     const World& w = *world_;
     const DueOutputs due = due_after_step();
@@ -456,7 +465,7 @@ void Simulation::after_step() {
     }
     if (due.checkpoint) {
         save_checkpoint(checkpoint_path());
-        while (next_checkpoint_time_ <= w.time + 1e-12) next_checkpoint_time_ += checkpoint_every_;
+        next_checkpoint_time_ = next_due(next_checkpoint_time_, checkpoint_every_, w.time);
     }
 }
 
@@ -573,10 +582,46 @@ bool Simulation::run_command(const Command& c) {
     return true;
 }
 
+// Refused before the first step: an output due every step of a run, and a
+// solve that would need more than twice its max_cycles at today's timestep
+// (one that stops at a bond break ends when it breaks, so it is not judged).
+void Simulation::check_run_length() {
+    World& w = *world_;
+    double dt = w.fixed_dt;
+    std::string set_by = "timestep.fixed";
+    if (dt == 0 && resumed_) { dt = w.last_dt; set_by = "the last step before the checkpoint"; }
+    if (dt == 0) {
+        const StableStep s = w.nominal_timestep();
+        dt = w.safety_factor * s.critical;
+        set_by = "timestep.safety_factor " + short_number(w.safety_factor) + " x the stable step, limited by " + s.limited_by;
+    }
+    if (!(dt > 0) || !std::isfinite(dt)) return;
+    const auto check_interval = [&](double interval, const std::string& where) {
+        if (interval > 0 && !out_dir_.empty() && interval < dt)
+            throw InputError(where, "interval " + short_number(interval) + " s is shorter than the timestep " +
+                                        short_number(dt) + " s: it would write every step; give at least " +
+                                        short_number(dt) + " s");
+    };
+    check_interval(vtk_interval_, "scene.output.vtk_interval");
+    check_interval(png_interval_, "scene.output.png.interval");
+    check_interval(checkpoint_every_, "--checkpoint-every");
+    for (std::size_t i = next_command_; i < commands_.size(); ++i) {
+        const Command& c = commands_[i];
+        if (c.kind != Command::solve_time || c.stop_on_bond_break) continue;
+        const double steps = (i == next_command_ && command_started_ ? command_end_time_ - w.time : c.value) / dt;
+        if (steps > 2.0 * double(c.max_cycles))
+            throw InputError(c.path + ".solve.time",
+                             "value " + short_number(c.value) + " s takes about " + short_number(steps) + " steps of " +
+                                 short_number(dt) + " s (" + set_by + "), more than max_cycles = " + std::to_string(c.max_cycles) +
+                                 ": shorten the time, or raise max_cycles if the run is meant to be that long");
+    }
+}
+
 void Simulation::run() {
     started_ = std::chrono::steady_clock::now();
     const std::clock_t cpu0 = std::clock();
     World& w = *world_;
+    check_run_length();
     if (!quiet_ && !resumed_) {
         w.prepare();
         const StableStep s = w.stable_timestep();
