@@ -18,11 +18,15 @@
 #include "validation.hpp"
 #include "variables.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <tuple>
 
 namespace fs = std::filesystem;
 
@@ -75,6 +79,76 @@ double reduce(const Node& n, const std::vector<double>& h, const std::vector<dou
 
 } // namespace
 
+namespace {
+
+// Cells of one CSV line, empty ones kept ("a,b," is three cells).
+std::vector<std::string> csv_cells(const std::string& line) {
+    std::vector<std::string> cells(1);
+    for (char c : line) {
+        if (c == ',') cells.emplace_back();
+        else if (c != '\r') cells.back() += c;
+    }
+    return cells;
+}
+
+// A number filling its cell (spaces aside), or NaN-free failure.
+bool read_number(const std::string& cell, double& v) {
+    const char* begin = cell.c_str();
+    char* end = nullptr;
+    v = std::strtod(begin, &end);
+    if (end == begin) return false;
+    while (*end == ' ' || *end == '\t') ++end;
+    return *end == '\0';
+}
+
+// One reference file read strictly: a header line (or none, when the first
+// row is numeric), then rows of as many cells as it, the x and y cells
+// finite numbers; errors give the file, line and column.
+struct ReferenceReader {
+    std::string path;
+    long xc, yc;
+    std::size_t cells = 0;  // of the first row
+    long line_no = 0;
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError(path + ":" + std::to_string(line_no), what);
+    }
+    // false for the header line
+    bool row(const std::vector<std::string>& c, double& x, double& y) {
+        const bool first = cells == 0;
+        if (first) cells = c.size();
+        else if (c.size() != cells)
+            fail(std::to_string(c.size()) + " cells where the first row has " + std::to_string(cells));
+        if (long(c.size()) <= std::max(xc, yc))
+            fail("no column " + std::to_string(std::max(xc, yc)) + " (the row has " + std::to_string(c.size()) + " cells)");
+        const bool nx = read_number(c[std::size_t(xc)], x), ny = read_number(c[std::size_t(yc)], y);
+        if (first && !(nx && ny)) return false;  // the header
+        for (const auto& [ok, v, col] : {std::tuple{nx, x, xc}, std::tuple{ny, y, yc}}) {
+            if (!ok) fail("column " + std::to_string(col) + " holds \"" + c[std::size_t(col)] + "\", not a number");
+            if (!std::isfinite(v)) fail("column " + std::to_string(col) + " holds \"" + c[std::size_t(col)] + "\": not a finite number");
+        }
+        return true;
+    }
+};
+
+// Within one series (rows of the same first-column label) x should run one
+// way without repeats. Digitised curves break this where they are steep
+// (glowinski_2001_falling_cylinder.csv line 47, 1 ms back at the impact);
+// the curve metrics take the points one by one, so it is said, not refused.
+void check_series_order(const ReferenceReader& r, const std::string& series, double x, std::string& last_series,
+                        std::vector<double>& xs) {
+    if (series != last_series) { xs.clear(); last_series = series; }
+    std::string what;
+    if (!xs.empty() && x == xs.back()) what = "repeats the row before (duplicate x)";
+    else if (xs.size() >= 2 && (x - xs.back()) * (xs.back() - xs[xs.size() - 2]) < 0) what = "breaks the order of the rows before";
+    xs.push_back(x);
+    static std::set<std::string> said;  // once per file and line, however many metrics read it
+    const std::string where = r.path + ":" + std::to_string(r.line_no);
+    if (what.empty() || !said.insert(where).second) return;
+    spdlog::warn("{}: x = {} {}; the points are compared as given", where, short_number(x), what);
+}
+
+} // namespace
+
 std::vector<std::pair<double, double>> reference_curve(const Node& ref, const std::string& scene_dir) {
     ref.allow_keys({"file", "x_column", "y_column", "x_max", "where"});
     // rows of one series: {"column": k, "equals": "P1"}, every condition met
@@ -95,26 +169,26 @@ std::vector<std::pair<double, double>> reference_curve(const Node& ref, const st
     }
     std::ifstream f(path);
     if (!f) ref.at("file").fail("cannot open \"" + file + "\" (looked beside the scene and in " + reference_dir() + ")");
-    const long xc = ref.at("x_column").integer(0, 1000), yc = ref.at("y_column").integer(0, 1000);
+    ReferenceReader reader{path, ref.at("x_column").integer(0, 1000), ref.at("y_column").integer(0, 1000)};
     const double x_max = ref.number_or("x_max", kInf);
     std::vector<std::pair<double, double>> points;
-    std::string line;
-    while (std::getline(f, line)) {
-        if (line.empty() || line[0] == '#') continue;
-        std::vector<std::string> cells;
-        std::stringstream ss(line);
-        for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
-        if (long(cells.size()) <= std::max(xc, yc)) continue;
+    std::string last_series;
+    std::vector<double> series_x;
+    for (std::string line; std::getline(f, line);) {
+        ++reader.line_no;
+        if (line.empty() || line[0] == '#' || line == "\r") continue;
+        const std::vector<std::string> cells = csv_cells(line);
+        double x = 0, y = 0;
+        if (!reader.row(cells, x, y)) continue;
         if (std::any_of(where.begin(), where.end(), [&](const auto& c) {
                 return long(cells.size()) <= c.first || cells[std::size_t(c.first)] != c.second;
             }))
             continue;
-        char *ex = nullptr, *ey = nullptr;
-        const double x = std::strtod(cells[xc].c_str(), &ex), y = std::strtod(cells[yc].c_str(), &ey);
-        if (ex == cells[xc].c_str() || ey == cells[yc].c_str()) continue;  // a header or text cell
+        double label_number = 0;
+        check_series_order(reader, read_number(cells[0], label_number) ? "" : cells[0], x, last_series, series_x);
         if (x <= x_max) points.emplace_back(x, y);
     }
-    if (points.empty()) ref.fail("no numeric points in columns " + std::to_string(xc) + ", " + std::to_string(yc) + " of " + path);
+    if (points.empty()) ref.fail("no numeric points in columns " + std::to_string(reader.xc) + ", " + std::to_string(reader.yc) + " of " + path);
     return points;
 }
 
