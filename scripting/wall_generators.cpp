@@ -2,6 +2,10 @@
 // rectangle and triangle meshes (3D). Each wall moves rigidly.
 #include "generators.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
 namespace plab {
 
 namespace {
@@ -95,13 +99,18 @@ void generate_wall(const Node& n, World& w) {
     const int id = w.walls.add_wall(wall);
     if (type == "segment") {
         require_dim(n, w, 2, type);
-        add_segment(w, id, n.at("from").vec(2), n.at("to").vec(2));
+        const Vec from = n.at("from").vec(2), to = n.at("to").vec(2);
+        if (from == to) n.at("to").fail("the segment has zero length: \"to\" equals \"from\"");
+        add_segment(w, id, from, to);
     } else if (type == "polyline") {
         require_dim(n, w, 2, type);
         const Node pts = n.at("points");
         pts.expect_array();
         if (pts.size() < 2) pts.fail("a polyline needs at least 2 points");
-        for (std::size_t i = 0; i + 1 < pts.size(); ++i) add_segment(w, id, pts.at(i).vec(2), pts.at(i + 1).vec(2));
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+            if (pts.at(i).vec(2) == pts.at(i + 1).vec(2)) pts.at(i + 1).fail("repeats the point before: a segment of zero length");
+            add_segment(w, id, pts.at(i).vec(2), pts.at(i + 1).vec(2));
+        }
         if (n.has("closed") && n.at("closed").boolean()) add_segment(w, id, pts.at(pts.size() - 1).vec(2), pts.at(0).vec(2));
     } else if (type == "box") {
         box(n, w, id);
@@ -128,10 +137,49 @@ void generate_wall(const Node& n, World& w) {
             if (!tri.value().is_array() || tri.size() != 3) tri.fail("expected 3 vertex indices");
             Vec p[3];
             for (int k = 0; k < 3; ++k) p[k] = v.at(std::size_t(tri.at(k).integer(0, long(v.size()) - 1))).vec(3);
+            if ((p[1] - p[0]).cross(p[2] - p[0]).norm() == 0) tri.fail("the triangle has zero area (its vertices are on a line)");
             add_triangle(w, id, p[0], p[1], p[2]);
         }
     }
     w.mark_dirty();
+}
+
+namespace {
+
+// A facet's vertices in a canonical order, so coincident facets compare equal.
+std::vector<double> facet_key(const Facet& f) {
+    std::vector<std::array<double, 3>> v{{f.a.x(), f.a.y(), f.a.z()}, {f.b.x(), f.b.y(), f.b.z()}};
+    if (f.kind == FacetKind::triangle) v.push_back({f.c.x(), f.c.y(), f.c.z()});
+    std::sort(v.begin(), v.end());
+    std::vector<double> key{double(int(f.kind))};
+    for (const auto& p : v) key.insert(key.end(), p.begin(), p.end());
+    return key;
+}
+
+bool same_plane(const Facet& p, const Facet& q) {
+    return p.b == q.b && std::fabs((q.a - p.a).dot(p.b)) <= 1e-12 * std::max(1.0, (q.a - p.a).norm());
+}
+
+} // namespace
+
+void check_coincident_facets(const Node& walls, const World& w) {
+    const std::vector<Facet>& facets = w.walls.facets;
+    std::vector<std::pair<std::vector<double>, int>> keys;
+    std::vector<const Facet*> planes;
+    const auto refuse = [&](int first, int second) {
+        walls.at(std::size_t(second)).fail("a facet coincides with one of " + walls.at(std::size_t(first)).path() +
+                                           (first == second ? " (itself)" : "") +
+                                           ": a ball touching it would feel the wall twice; remove one");
+    };
+    for (const Facet& f : facets) {
+        if (f.kind != FacetKind::plane) { keys.emplace_back(facet_key(f), f.wall); continue; }
+        for (const Facet* p : planes)
+            if (same_plane(*p, f)) refuse(p->wall, f.wall);
+        planes.push_back(&f);
+    }
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t i = 1; i < keys.size(); ++i)
+        if (keys[i].first == keys[i - 1].first) refuse(std::min(keys[i].second, keys[i - 1].second), std::max(keys[i].second, keys[i - 1].second));
 }
 
 } // namespace plab
