@@ -214,7 +214,7 @@ def same_files(a, b):
 
 
 class Runner:
-    def __init__(self, plab, catalogue, memory_mb, pending_seconds=None):
+    def __init__(self, plab, catalogue, memory_mb, pending_seconds=None, test_plugins=None):
         self.pending_seconds = pending_seconds
         self.plab = os.path.abspath(plab)
         self.catalogue = catalogue
@@ -242,7 +242,7 @@ class Runner:
         if os.path.isdir(beside) and not any(same_files(beside, d) for d in self.search_dirs):
             self.env["PLAB_PLUGIN_PATH"] = beside + (":" + self.env["PLAB_PLUGIN_PATH"] if self.env.get("PLAB_PLUGIN_PATH") else "")
             self.search_dirs = self.plugin_search_dirs()
-        test_plugins = os.path.join(bindir, "test_plugins")
+        test_plugins = os.path.abspath(test_plugins or os.path.join(bindir, "test_plugins"))
         self.subs = {"test_plugins": test_plugins, "plab": self.plab}
         self.have = {"test_plugins": os.path.isfile(os.path.join(test_plugins, "wrong_abi.so"))}
 
@@ -275,7 +275,7 @@ class Runner:
         result = {"name": e["name"], "entry": e, "line": "", "seconds": 0.0}
         needs = e.get("requires")
         if needs and not self.have.get(needs, False):
-            result.update(status="SKIP", reason=f"needs {needs} (not found beside {self.plab})")
+            result.update(status="SKIP", reason=f"needs {needs} (none in {self.subs[needs]})")
             return result
         folder = tempfile.mkdtemp(prefix="plab_errors_")
         try:
@@ -391,6 +391,8 @@ def main():
                          "ASan's hard_rss_limit_mb instead), default 2048")
     ap.add_argument("--pending-seconds", type=float,
                     help="a shorter time bound for the pending entries (default: their own), for quick runs")
+    ap.add_argument("--test-plugins", help="the folder of the deliberately broken test plug-ins (default: "
+                    "test_plugins beside plab); the entries that need them are skipped without it")
     ap.add_argument("--verbose", action="store_true", help="print the whole output of every entry")
     a = ap.parse_args()
 
@@ -410,7 +412,7 @@ def main():
     if not os.access(a.plab, os.X_OK):
         fail(f"{a.plab} is not an executable plab")
 
-    runner = Runner(a.plab, catalogue, a.memory_mb, a.pending_seconds)
+    runner = Runner(a.plab, catalogue, a.memory_mb, a.pending_seconds, a.test_plugins)
     t0 = time.monotonic()
     results, width = [], max(len(e["name"]) for e in entries)
     for e in entries:
