@@ -336,6 +336,8 @@ class Runner:
 # ---------------------------------------------------------------- the docs
 
 def code(text):
+    # a run of one character (a 300-letter name, deep brackets) shown short
+    text = re.sub(r"(.)\1{19,}", lambda m: m[1] * 8 + "…", text)
     text = text.replace("|", "\\|")
     return f"`` {text} ``" if "`" in text else f"`{text}`"
 
