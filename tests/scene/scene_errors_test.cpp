@@ -1,6 +1,8 @@
 // Bad scenes must fail with an InputError that names the JSON path, the
 // offending value and the valid range or the allowed values. One test case
-// per class of bad input; docs/errors.md catalogues the resulting messages.
+// per class of bad input, in process. tests/errors/catalogue.json checks the
+// same classes (and more) end to end through the plab CLI; docs/errors.md is
+// generated from it.
 #include <simulation.hpp>
 
 #include <catch2/catch.hpp>
