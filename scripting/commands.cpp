@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <ctime>
+#include <filesystem>
 #include <unistd.h>
 
 namespace plab {
@@ -588,12 +589,12 @@ bool Simulation::run_command(const Command& c) {
 void Simulation::check_run_length() {
     World& w = *world_;
     double dt = w.fixed_dt;
-    std::string set_by = "timestep.fixed";
+    std::string set_by = "scene.timestep.fixed";
     if (dt == 0 && resumed_) { dt = w.last_dt; set_by = "the last step before the checkpoint"; }
     if (dt == 0) {
         const StableStep s = w.nominal_timestep();
         dt = w.safety_factor * s.critical;
-        set_by = "timestep.safety_factor " + short_number(w.safety_factor) + " x the stable step, limited by " + s.limited_by;
+        set_by = "scene.timestep.safety_factor " + short_number(w.safety_factor) + " x the stable step, limited by " + s.limited_by;
     }
     if (!(dt > 0) || !std::isfinite(dt)) return;
     const auto check_interval = [&](double interval, const std::string& where) {
@@ -617,10 +618,22 @@ void Simulation::check_run_length() {
     }
 }
 
+// The output folder, made before the first step so that a name that cannot
+// be a folder is refused by who gave it, not found at the first output.
+void Simulation::make_output_dir() const {
+    if (out_dir_.empty()) return;
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir_, ec);
+    if (ec || !std::filesystem::is_directory(out_dir_))
+        throw InputError(out_dir_from_, "cannot make the output folder \"" + out_dir_ + "\": " +
+                                            (ec ? ec.message() : "a file of that name exists"));
+}
+
 void Simulation::run() {
     started_ = std::chrono::steady_clock::now();
     const std::clock_t cpu0 = std::clock();
     World& w = *world_;
+    make_output_dir();
     check_run_length();
     if (!quiet_ && !resumed_) {
         w.prepare();

@@ -33,7 +33,10 @@ void check_mass(const Node& n, int dim, double radius, double density) {
     std::ostringstream s;
     s << "radius " << radius << " m and density " << density << " kg/m" << (dim == 2 ? "2 (a disc 1 m thick)" : "3")
       << " give a ball mass of " << mass << " kg: outside [1e-30, 1e30] kg";
-    n.at(n.has("mass") ? "mass" : "radius").fail(s.str());
+    // blame the radius when no material would make a sensible ball of it
+    const double water_ball = Bodies::mass_of(dim, radius, 1000.0);
+    const bool radius_at_fault = !(water_ball >= 1e-30 && water_ball <= 1e30);
+    n.at(n.has("mass") ? "mass" : radius_at_fault ? "radius" : "density").fail(s.str());
 }
 
 Material read_material(const Node& n, World& w, bool radius_range, bool allow_mass = false) {
@@ -196,7 +199,11 @@ Box random_fill(const Node& n, World& w, const GeneratorLimits& limits) {
     const long max_attempts = n.has("max_attempts") ? n.at("max_attempts").integer(1, 1L << 40) : 1000 * count;
     std::vector<Vec> placed;
     std::vector<double> radii;
-    const double cell = 2 * m.radius_hi;
+    // cells at least a diameter (neighbours are then within one cell) and
+    // not more cells than balls: tiny balls in a big box need no fine grid
+    double box_volume = 1;
+    for (int c = 0; c < w.dim; ++c) box_volume *= box.hi[c] - box.lo[c];
+    const double cell = std::max(2 * m.radius_hi, std::pow(box_volume / double(count), 1.0 / w.dim));
     std::array<long, 3> dims{1, 1, 1};
     for (int c = 0; c < w.dim; ++c) dims[c] = std::max(1L, long((box.hi[c] - box.lo[c]) / cell) + 1);
     std::vector<std::vector<int>> grid(std::size_t(dims[0] * dims[1] * dims[2]));

@@ -105,12 +105,12 @@ bool read_number(const std::string& cell, double& v) {
 // row is numeric), then rows of as many cells as it, the x and y cells
 // finite numbers; errors give the file, line and column.
 struct ReferenceReader {
-    std::string path;
+    std::string json_path, path;
     long xc, yc;
     std::size_t cells = 0;  // of the first row
     long line_no = 0;
     [[noreturn]] void fail(const std::string& what) const {
-        throw InputError(path + ":" + std::to_string(line_no), what);
+        throw InputError(json_path, path + ", line " + std::to_string(line_no) + ": " + what);
     }
     // false for the header line
     bool row(const std::vector<std::string>& c, double& x, double& y) {
@@ -142,7 +142,7 @@ void check_series_order(const ReferenceReader& r, const std::string& series, dou
     else if (xs.size() >= 2 && (x - xs.back()) * (xs.back() - xs[xs.size() - 2]) < 0) what = "breaks the order of the rows before";
     xs.push_back(x);
     static std::set<std::string> said;  // once per file and line, however many metrics read it
-    const std::string where = r.path + ":" + std::to_string(r.line_no);
+    const std::string where = r.json_path + ": " + r.path + ", line " + std::to_string(r.line_no);
     if (what.empty() || !said.insert(where).second) return;
     spdlog::warn("{}: x = {} {}; the points are compared as given", where, short_number(x), what);
 }
@@ -169,7 +169,7 @@ std::vector<std::pair<double, double>> reference_curve(const Node& ref, const st
     }
     std::ifstream f(path);
     if (!f) ref.at("file").fail("cannot open \"" + file + "\" (looked beside the scene and in " + reference_dir() + ")");
-    ReferenceReader reader{path, ref.at("x_column").integer(0, 1000), ref.at("y_column").integer(0, 1000)};
+    ReferenceReader reader{ref.path(), path, ref.at("x_column").integer(0, 1000), ref.at("y_column").integer(0, 1000)};
     const double x_max = ref.number_or("x_max", kInf);
     std::vector<std::pair<double, double>> points;
     std::string last_series;

@@ -63,7 +63,10 @@ public:
     const json& scene() const { return scene_; }
 
     // Output folder; empty: write nothing (tests).
-    void set_output_dir(const std::string& dir) { out_dir_ = dir; }
+    void set_output_dir(const std::string& dir) {
+        out_dir_ = dir;
+        out_dir_from_ = "--out";
+    }
     void set_quiet(bool q) { quiet_ = q; }
     // Runs every command of the scene in order.
     void run();
@@ -156,6 +159,7 @@ private:
     std::string write_last_good() const;  // its path, or "" when none is kept
     void after_step();
     void check_run_length();
+    void make_output_dir() const;
     std::vector<double> sample_history_row() const;
     // what after_step() writes at the world's step and time
     struct DueOutputs {
@@ -168,6 +172,7 @@ private:
     void check_domain(const std::string& where, std::size_t first) const;
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
     GeneratorLimits limits_;
+    std::string out_dir_from_ = "scene.output.dir";  // who named out_dir_, for messages
 };
 
 // SIGINT/SIGTERM: the handler only records the signal; the run finishes
