@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -50,7 +51,11 @@ public:
                 throw InputError(path(false), "JSON nested deeper than " + std::to_string(kMaxDepth) + " levels");
             frames_.push_back({event == E::array_start, -1, {}});
             break;
-        case E::key: frames_.back().key = parsed.get<std::string>(); break;
+        case E::key:
+            frames_.back().key = parsed.get<std::string>();
+            if (!frames_.back().keys.insert(frames_.back().key).second)  // nlohmann keeps the last silently
+                throw InputError(path(false), "the key appears twice in one object; give it once");
+            break;
         case E::value: next_element(); break;
         case E::object_end:
         case E::array_end: frames_.pop_back(); break;
@@ -74,6 +79,7 @@ private:
         bool array;
         long index;  // the last element read
         std::string key;
+        std::set<std::string> keys;  // of an object, so far
     };
     void next_element() {
         if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
