@@ -111,6 +111,8 @@ RunOptions parse_run_options(const std::vector<std::string>& args, const std::st
         else if (a == "--out" && i + 1 < args.size()) o.out = args[++i];
         else if (a == "--checkpoint-every" && i + 1 < args.size()) o.every = checkpoint_interval(args[++i]);
         else if (a == "--quiet") o.quiet = true;
+        else if (a == "--set" || a == "--out" || a == "--checkpoint-every")
+            throw InputError("command line", a + " needs a value after it\n" + usage);
         else if (a.rfind("--", 0) == 0) throw InputError("command line", "unknown option " + a + "\n" + usage);
         else if (o.path.empty()) o.path = a;
         else throw InputError("command line", "more than one " + what + " given (" + o.path + ", " + a + ")");
