@@ -33,6 +33,7 @@ namespace {
 const char* usage =
     "usage:\n"
     "  plab run SCENE.json [--set PATH=VALUE]... [--out DIR] [--quiet] [--checkpoint-every SECONDS]\n"
+    "  plab check SCENE.json [--set PATH=VALUE]...\n"
     "  plab restart CHECKPOINT.plab [--set PATH=VALUE]... [--out DIR] [--quiet] [--checkpoint-every SECONDS]\n"
     "  plab sweep SCENE.json... [--vary PATH=v1,v2]... [--set PATH=VALUE]... [--jobs N] [--out DIR]\n"
     "             [--metric NAME] [--cost cpu_s|wall_s|steps|particle_steps|peak_rss_mb]\n"
@@ -40,6 +41,27 @@ const char* usage =
     "  plab validate CASE... | --list | --all [--quick] [--report DIR]\n"
     "  plab new-model NAME [DIR]   (an out-of-tree contact-model project)\n"
     "  plab plot HISTORY.csv [--x COL] [--y A,B] [--ref REF.csv --ref-y COL [--band F]] [--out FILE.png]\n";
+
+// What the compiler was told: the vector extensions the kernel may use and
+// whether OpenMP is on (speed tables name them, bench/peers/README.md).
+std::string build_flags() {
+    std::string f = "built with";
+#if defined(__AVX512F__)
+    f += " AVX-512";
+#elif defined(__AVX2__)
+    f += " AVX2";
+#elif defined(__SSE4_2__)
+    f += " SSE4.2";
+#else
+    f += " the baseline instruction set";
+#endif
+#ifdef _OPENMP
+    f += ", OpenMP " + std::to_string(omp_get_max_threads()) + " threads";
+#else
+    f += ", no OpenMP";
+#endif
+    return f;
+}
 
 double checkpoint_interval(const std::string& text) {
     char* end = nullptr;
@@ -120,6 +142,32 @@ RunOptions parse_run_options(const std::vector<std::string>& args, const std::st
     if (o.path.empty()) throw InputError("command line", "no " + what + " given\n" + usage);
     return o;
 }
+
+// Loads the scene as `run` would and says what it will do, without a step.
+int cmd_check(const std::vector<std::string>& args) {
+    const RunOptions o = parse_run_options(args, "scene");
+    json scene = read_scene_file(o.path);
+    for (const auto& s : o.sets) apply_override(scene, s);
+    Simulation sim(scene, fs::absolute(o.path).parent_path().string());
+    if (!o.out.empty()) sim.set_output_dir(o.out);
+    else if (!(scene.contains("output") && scene["output"].contains("dir")))
+        sim.set_output_dir("plab_out/" + fs::path(o.path).stem().string());
+    std::cout << "scene: " << o.path << " (loads: every value is in range)\n";
+    sim.check_report(std::cout);
+    return 0;
+}
+
+const char* help =
+    "plab: particle simulations (DEM, SPH and their coupling) from JSON scenes, physics from plug-ins.\n\n"
+    "  run        run a scene to its end: outputs, history.csv, summary.json in plab_out/NAME (or --out)\n"
+    "  check      load a scene and say what it would do (bodies, models, timestep, steps, outputs), without running\n"
+    "  restart    continue a run from its checkpoint.plab (written on SIGINT/SIGTERM or --checkpoint-every)\n"
+    "  sweep      run a scene over a grid of values (--vary), a cost-error table and its Pareto front\n"
+    "  plugins    list the plug-ins found, or describe one model's properties and units\n"
+    "  validate   run the validation cases against their reference data (validation/)\n"
+    "  new-model  make an out-of-tree project for a new contact model\n"
+    "  plot       draw history columns against time or a reference CSV as a PNG\n"
+    "  --version  the version and how this binary was built\n\n";
 
 int cmd_restart(const std::vector<std::string>& args) {
     const RunOptions o = parse_run_options(args, "checkpoint");
@@ -271,15 +319,20 @@ int main(int argc, char** argv) {
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
 #endif
     std::vector<std::string> args(argv + 1, argv + argc);
-    if (args.empty() || args[0] == "--help" || args[0] == "-h") {
-        std::cout << usage;
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+        std::cout << help << usage;
         return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "--version" || args[0] == "version") {
+        std::cout << "plab " << PLAB_VERSION << " (plug-in ABI " << PLAB_ABI_VERSION << ", " << build_flags() << ")\n";
+        return 0;
     }
     const std::string cmd = args[0];
     args.erase(args.begin());
     try {
         if (cmd == "run") return cmd_run(args);
         if (cmd == "restart") return cmd_restart(args);
+        if (cmd == "check") return cmd_check(args);
         if (cmd == "plugins") return cmd_plugins(args);
         if (cmd == "sweep") return cmd_sweep(args, fs::read_symlink("/proc/self/exe").string());
         if (cmd == "validate") return cmd_validate(args);

@@ -12,6 +12,7 @@
 #include <ctime>
 #include <functional>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,8 @@ public:
 
     json summary() const;
     void write_vtk_snapshot();
+    // What the scene will do, without running it (`plab check`, scene_check.cpp).
+    void check_report(std::ostream& out);
 
     // ---- checkpoint and restart (restart.cpp, docs/restart.md) ----
     // The complete state of the run — world, the remaining commands and the
