@@ -288,13 +288,9 @@ void apply_override(json& scene, const std::string& assignment) {
                                                        std::to_string(node->size()) + ")");
             node = &(*node)[std::size_t(idx)];
         } else if (node->is_object()) {
-            // the last key may be new (an optional property not in the file yet)
-            if (!node->contains(k) && !last) {
-                std::string keys_here;
-                for (auto it = node->begin(); it != node->end(); ++it) keys_here += (keys_here.empty() ? "" : ", ") + it.key();
-                throw InputError(walked + "." + k, "--set " + path + ": no key \"" + k + "\" in the scene; keys here: " +
-                                                       (keys_here.empty() ? "none" : keys_here));
-            }
+            // a missing key is made (an object on the way), as the loader then
+            // refuses any key it does not know, by its path
+            if (!node->contains(k) && !last) (*node)[k] = json::object();
             node = &(*node)[k];
         } else {
             throw InputError(walked, "--set " + path + ": cannot descend into " + show(*node));

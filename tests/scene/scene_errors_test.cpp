@@ -375,10 +375,17 @@ TEST_CASE("a lattice box too small for one ball names the box and the radius", "
                                   Contains("radius 0.01") && Contains("at least 0.02"));
 }
 
-TEST_CASE("a --set override with a path that does not exist names the missing key and the keys there", "[scene]") {
-    CHECK_THAT(override_error(base_scene(), "contact_models.0.propertys.kn=1e5"),
-               Contains("scene.contact_models.0.propertys") && Contains("no key \"propertys\"") &&
-                   Contains("keys here: groups, model, properties"));
+TEST_CASE("a --set override makes the keys on its way, and the loader refuses those it does not know", "[scene]") {
+    json misspelt = base_scene();
+    plab::apply_override(misspelt, "contact_models.0.propertys.kn=1e5");
+    CHECK_THAT(load_error(misspelt), Contains("scene.contact_models[0].propertys") && Contains("unknown key 'propertys'") &&
+                                         Contains("allowed here: groups, model, properties"));
+    SECTION("a missing parent is made: output.png on a scene without output") {
+        json s = base_scene();
+        s.erase("output");
+        plab::apply_override(s, "output.png.interval=0.01");
+        CHECK(s["output"]["png"]["interval"] == 0.01);
+    }
     SECTION("a path through a number") {
         CHECK_THAT(override_error(base_scene(), "dimension.x=1"),
                    Contains("scene.dimension") && Contains("cannot descend into 2"));
