@@ -89,7 +89,7 @@ void warn_if_threads_will_spin() {
 #endif
 }
 
-// Runs to the end, or until SIGINT/SIGTERM: then the checkpoint is written
+// Runs to the end, or until SIGINT/SIGTERM/SIGHUP: then the checkpoint is written
 // and the exit code is 128 + the signal, as a shell reports a killed job.
 int run_and_report(Simulation& sim, bool quiet, const std::string& out) {
     install_stop_handlers();
@@ -161,7 +161,7 @@ const char* help =
     "plab: particle simulations (DEM, SPH and their coupling) from JSON scenes, physics from plug-ins.\n\n"
     "  run        run a scene to its end: outputs, history.csv, summary.json in plab_out/NAME (or --out)\n"
     "  check      load a scene and say what it would do (bodies, models, timestep, steps, outputs), without running\n"
-    "  restart    continue a run from its checkpoint.plab (written on SIGINT/SIGTERM or --checkpoint-every)\n"
+    "  restart    continue a run from its checkpoint.plab (written on SIGINT/SIGTERM/SIGHUP or --checkpoint-every)\n"
     "  sweep      run a scene over a grid of values (--vary), a cost-error table and its Pareto front\n"
     "  plugins    list the plug-ins found, or describe one model's properties and units\n"
     "  validate   run the validation cases against their reference data (validation/)\n"

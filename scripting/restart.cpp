@@ -80,9 +80,12 @@ void load_plugins_of(CheckpointReader& in, PluginHost& host, const std::string& 
 
 } // namespace
 
+// SIGHUP too: a closed terminal or a dropped ssh session stops the run as
+// SIGTERM does, with its checkpoint, instead of killing it with nothing saved
 void install_stop_handlers() {
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
+    std::signal(SIGHUP, on_stop_signal);
 }
 int stop_signal() { return g_stop_signal; }
 void request_stop(int signal) { g_stop_signal = signal; }

@@ -2,10 +2,12 @@
 # A run killed with SIGTERM mid-way stops after its current step, writes a
 # checkpoint and its outputs, exits 143 and says how to continue; `plab
 # restart` then finishes it with the same final state hash, history and VTK
-# series as a run that was never killed (issue 9, acceptance 2).
-#   sigterm_restart.sh PLAB_EXE SCENE WORK_DIR
+# series as a run that was never killed (issue 9, acceptance 2). SIGHUP (a
+# closed terminal) and SIGINT stop it the same way, with 128 + their number.
+#   sigterm_restart.sh PLAB_EXE SCENE WORK_DIR [SIGNAL (TERM)]
 set -euo pipefail
-plab=$1 scene=$2 work=$3
+plab=$1 scene=$2 work=$3 signal=${4:-TERM}
+expected=$((128 + $(kill -l "$signal")))
 rm -rf "$work" && mkdir -p "$work"
 hash_of() { sed -n 's/.*"state_hash": "\([0-9a-f]*\)".*/\1/p' "$1/summary.json"; }
 
@@ -18,10 +20,10 @@ for _ in $(seq 1 3000); do
   kill -0 "$pid" 2>/dev/null || break
   sleep 0.01
 done
-kill -TERM "$pid"
+kill -"$signal" "$pid"
 set +e; wait "$pid"; rc=$?; set -e
 cat "$work/cut.err"
-[ "$rc" -eq 143 ] || { echo "FAIL: the killed run exited $rc, expected 143 (128 + SIGTERM)"; exit 1; }
+[ "$rc" -eq "$expected" ] || { echo "FAIL: the killed run exited $rc, expected $expected (128 + SIG$signal)"; exit 1; }
 grep -q "plab restart $work/cut/checkpoint.plab" "$work/cut.err" || { echo "FAIL: no 'plab restart' hint"; exit 1; }
 killed_at=$(sed -n 's/.*"steps": \([0-9]*\).*/\1/p' "$work/cut/summary.json")
 total=$(sed -n 's/.*"steps": \([0-9]*\).*/\1/p' "$work/whole/summary.json")
