@@ -476,8 +476,6 @@ void Simulation::cycle(long n) {
         w.prepare();
         history_rows_.push_back(sample_history_row());
     }
-    const bool progress = !quiet_ && isatty(STDERR_FILENO);
-    auto last = std::chrono::steady_clock::now();
     // The contact forces are written on the steps after which something
     // reads them (World::contact_forces_wanted): outputs and history rows
     // due, the cycle's last step (the next command, the run's summary) or a
@@ -502,17 +500,8 @@ void Simulation::cycle(long n) {
             one_step();
             break;
         }
-        if (progress && (k & 255) == 0) {
-            const auto now = std::chrono::steady_clock::now();
-            if (std::chrono::duration<double>(now - last).count() > 0.5) {
-                last = now;
-                const double wall = std::chrono::duration<double>(now - started_).count();
-                fprintf(stderr, "\r  t = %.6g s  step %llu  %.0f steps/s   ", w.time, (unsigned long long)w.step_count,
-                        double(run_.steps) / std::max(wall, 1e-9));
-            }
-        }
+        progress_.update(w.time, w.step_count);
     }
-    if (progress) fprintf(stderr, "\r%60s\r", "");
 }
 
 // Cost figures of the run and its outputs, also for a run that stopped.
@@ -544,6 +533,15 @@ bool Simulation::run_command(const Command& c) {
         command_end_time_ = c.kind == Command::solve_time ? w.time + c.value : 0.0;
         command_breaks_before_ = w.bond_breaks.size();
     }
+    progress_.enabled = !quiet_;
+    if (c.kind == Command::solve_time) progress_.start(Progress::Measure::time, w.time, command_end_time_, w.step_count);
+    else if (c.kind == Command::cycle)
+        progress_.start(Progress::Measure::steps, double(command_start_step_), double(command_start_step_) + c.value, w.step_count);
+    else progress_.start(Progress::Measure::open, 0, 0, w.step_count);
+    struct Finish {
+        Progress& p;
+        ~Finish() { p.finish(); }
+    } finish{progress_};
     const auto done = [&] { return long(w.step_count - command_start_step_); };
     switch (c.kind) {
     case Command::cycle:

@@ -5,6 +5,7 @@
 #include "generators.hpp"
 #include "json_reader.hpp"
 #include "pictures.hpp"
+#include "progress.hpp"
 
 #include <plab_core/world.hpp>
 
@@ -124,6 +125,7 @@ private:
     json metrics_;  // evaluated `metrics` of the scene (metrics.cpp)
     std::string timestep_note_;
     std::chrono::steady_clock::time_point started_;
+    Progress progress_;
 
     void load(const Node& root);
     void load_plugins(const Node& n);
