@@ -96,8 +96,8 @@ int run_and_report(Simulation& sim, bool quiet, const std::string& out) {
     if (!quiet) warn_if_threads_will_spin();
     try {
         sim.run();
-    } catch (const RunError& e) {
-        spdlog::error("run stopped: {}", e.what());
+    } catch (const RunError& e) {  // on stderr, as every error, where a script looks for it
+        std::cerr << "error: run stopped: " << e.what() << "\n";
         return 3;
     }
     if (sim.interrupted()) {
