@@ -236,6 +236,7 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& path, const s
     sim->checkpoint_every_ = in.f64();
     sim->next_checkpoint_time_ = in.f64();
     in.section("end");
+    in.finish();
     sim->resumed_ = true;
     return sim;
 }
