@@ -583,9 +583,11 @@ void Simulation::run() {
         if (w.fixed_dt > 0) spdlog::info("timestep fixed at {:g} s; stable limit {:g} s ({})", w.fixed_dt, s.critical, s.limited_by);
         else spdlog::info("timestep automatic: {:g} x critical {:g} s ({})", w.safety_factor, s.critical, s.limited_by);
     }
-    if (!quiet_ && resumed_)
+    if (!quiet_ && resumed_) {
         spdlog::info("restarted at step {} (t = {:g} s), command {} of {}", w.step_count, w.time, next_command_ + 1,
                      commands_.size());
+        for (const auto& line : restart_log_) spdlog::info("{}", line);
+    }
     if (vtk_interval_ > 0 && !out_dir_.empty() && w.step_count == 0 && !resumed_) {
         w.prepare();
         write_vtk_snapshot();

@@ -17,6 +17,7 @@
 namespace plab {
 
 class Materials;
+class CheckpointReader;
 class CheckpointWriter;
 
 // Applies "a.b.0.c=value" to a scene: the value is read as JSON when it
@@ -79,8 +80,10 @@ public:
     // progress of the current one, output counters — written atomically.
     void save_checkpoint(const std::string& path) const;
     // The run saved in a checkpoint, ready to continue with run(); `sets`
-    // (PATH=VALUE) change the scene it was started from. Throws
-    // CheckpointError or InputError saying exactly why it cannot load.
+    // (PATH=VALUE) change the scene it was started from, from the restart
+    // step on: a set of what the checkpoint restores (bodies, walls, the
+    // commands run so far, ...) is refused by path. run() logs each change.
+    // Throws CheckpointError or InputError saying exactly why it cannot load.
     static std::unique_ptr<Simulation> restart(const std::string& path, const std::vector<std::string>& sets = {},
                                                std::shared_ptr<PluginHost> host = nullptr);
     // A checkpoint to checkpoint_path() every `seconds` of simulated time (0: never).
@@ -143,6 +146,9 @@ private:
     // the run's own sections of a checkpoint (commands, outputs) at the
     // world's last-good snapshot (runs with outputs; World::on_snapshot)
     std::string last_good_run_state_;
+    std::vector<std::string> restart_log_;  // what a restart's --set changed, logged when the run starts
+    void load_run_state(CheckpointReader& in);
+    void check_command_sets(const std::vector<std::string>& sets) const;
     void write_plugins_and_scene(CheckpointWriter& out) const;
     void write_run_state(CheckpointWriter& out) const;
     std::string run_state_bytes() const;
