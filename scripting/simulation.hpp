@@ -60,7 +60,10 @@ public:
     const json& scene() const { return scene_; }
 
     // Output folder; empty: write nothing (tests).
-    void set_output_dir(const std::string& dir) { out_dir_ = dir; }
+    void set_output_dir(const std::string& dir) {
+        out_dir_ = dir;
+        history_stale_ = true;
+    }
     void set_quiet(bool q) { quiet_ = q; }
     // Runs every command of the scene in order.
     void run();
@@ -164,8 +167,20 @@ private:
         bool any() const { return history || vtk || png || checkpoint; }
     };
     DueOutputs due_after_step() const;
-    void finish_run(std::clock_t cpu0);
-    void write_outputs() const;
+    void update_run_figures();
+    void finish_run();
+    void write_outputs() const;  // bond_breaks.csv, summary.json
+    void remove_stale_temporaries() const;
+    // history.csv: the rows of history_rows_ it holds; whether it must be
+    // written whole; when rows were last written (flush_history())
+    std::size_t history_on_disk_ = 0;
+    bool history_stale_ = true;
+    std::chrono::steady_clock::time_point history_flushed_{};
+    static constexpr std::chrono::seconds kHistoryFlushInterval{2};
+    void flush_history();
+    bool history_flush_due() const;
+    std::clock_t cpu_started_ = 0;
+    bool finished_ = false;  // run() ended, not stopped by a signal (summary.json: "finished")
     void check_domain(const std::string& where, std::size_t first) const;
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
 };
