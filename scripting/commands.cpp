@@ -403,6 +403,7 @@ void Simulation::load_commands(const Node& n) {
                 w.mark_dirty();
                 w.prepare();
                 history_rows_.clear();
+                history_stale_ = true;
                 if (!history_cols_.empty()) history_rows_.push_back(sample_history_row());
             };
         } else if (c.has("output")) {
@@ -456,6 +457,9 @@ void Simulation::after_step() {
     const World& w = *world_;
     const DueOutputs due = due_after_step();
     if (due.history) history_rows_.push_back(sample_history_row());
+    // the rows go to history.csv with every other output, and every few
+    // seconds between them: a killed run loses little of its history
+    if (due.vtk || due.png || due.checkpoint || (due.history && history_flush_due())) flush_history();
     if (due.vtk) {
         write_vtk_snapshot();
         next_vtk_time_ += vtk_interval_;
@@ -465,6 +469,8 @@ void Simulation::after_step() {
         next_png_time_ += png_interval_;
     }
     if (due.checkpoint) {
+        update_run_figures();
+        write_outputs();  // before the checkpoint: a checkpoint on disk has its summary
         save_checkpoint(checkpoint_path());
         next_checkpoint_time_ = next_due(next_checkpoint_time_, checkpoint_every_, w.time);
     }
@@ -504,14 +510,21 @@ void Simulation::cycle(long n) {
     }
 }
 
-// Cost figures of the run and its outputs, also for a run that stopped.
-void Simulation::finish_run(std::clock_t cpu0) {
+// Cost figures of the run so far.
+void Simulation::update_run_figures() {
     const World& w = *world_;
     run_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-    run_.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+    run_.cpu_seconds = double(std::clock() - cpu_started_) / CLOCKS_PER_SEC;
     run_.simulated_time = w.time;
     run_.particle_steps_per_second =
         run_.wall_seconds > 0 ? double(run_.steps) * double(w.bodies.size()) / run_.wall_seconds : 0;
+}
+
+// Cost figures of the run and its outputs, also for a run that stopped.
+void Simulation::finish_run() {
+    const World& w = *world_;
+    update_run_figures();
+    finished_ = !interrupted_;
     // histories.at_end: the state the run ends in (an equilibrium a ratio
     // solve reached, the step a bond broke) is a row too, unless the last
     // step was sampled already (rows are taken at step 0 and every `every`)
@@ -520,7 +533,9 @@ void Simulation::finish_run(std::clock_t cpu0) {
         if (!sampled) history_rows_.push_back(sample_history_row());
     }
     if (scene_.contains("metrics")) metrics_ = evaluate_metrics(scene_["metrics"], *this, scene_dir_);
-    if (!out_dir_.empty()) write_outputs();
+    if (out_dir_.empty()) return;
+    flush_history();
+    write_outputs();
 }
 
 // One command, resumable: its progress is measured from the step it began
@@ -576,7 +591,11 @@ bool Simulation::run_command(const Command& c) {
         }
     }
     case Command::set: c.apply(w); w.mark_dirty(); return true;
-    case Command::output: if (!out_dir_.empty()) write_vtk_snapshot(); return true;
+    case Command::output:
+        if (out_dir_.empty()) return true;
+        flush_history();
+        write_vtk_snapshot();
+        return true;
     }
     return true;
 }
@@ -629,7 +648,7 @@ void Simulation::make_output_dir() const {
 
 void Simulation::run() {
     started_ = std::chrono::steady_clock::now();
-    const std::clock_t cpu0 = std::clock();
+    cpu_started_ = std::clock();
     World& w = *world_;
     make_output_dir();
     check_run_length();
@@ -639,9 +658,13 @@ void Simulation::run() {
         if (w.fixed_dt > 0) spdlog::info("timestep fixed at {:g} s; stable limit {:g} s ({})", w.fixed_dt, s.critical, s.limited_by);
         else spdlog::info("timestep automatic: {:g} x critical {:g} s ({})", w.safety_factor, s.critical, s.limited_by);
     }
-    if (!quiet_ && resumed_)
+    if (!quiet_ && resumed_) {
         spdlog::info("restarted at step {} (t = {:g} s), command {} of {}", w.step_count, w.time, next_command_ + 1,
                      commands_.size());
+        for (const auto& line : restart_log_) spdlog::info("{}", line);
+    }
+    remove_stale_temporaries();
+    flush_history();  // a restart's rows replace those a killed run wrote after its checkpoint
     if (vtk_interval_ > 0 && !out_dir_.empty() && w.step_count == 0 && !resumed_) {
         w.prepare();
         write_vtk_snapshot();
@@ -666,7 +689,7 @@ void Simulation::run() {
     } catch (const RunError& e) {
         // the world is back at its last good state: keep it for inspection
         if (!out_dir_.empty()) write_vtk_snapshot();
-        finish_run(cpu0);
+        finish_run();
         const std::string file = write_last_good();
         if (file.empty()) throw;
         throw RunError(std::string(e.what()) + "\nthe last good state is saved in " + file +
@@ -674,10 +697,10 @@ void Simulation::run() {
                        (w.fixed_dt > 0 ? " --set timestep.fixed=" + short_number(0.5 * w.fixed_dt)
                                        : " --set timestep.safety_factor=" + short_number(0.5 * w.safety_factor)));
     } catch (...) {
-        finish_run(cpu0);
+        finish_run();
         throw;
     }
-    finish_run(cpu0);
+    finish_run();
 }
 
 } // namespace plab

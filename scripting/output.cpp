@@ -1,13 +1,21 @@
 // Outputs of a run: history CSV, VTK XML PolyData snapshots (.vtp) with a
 // .pvd series for ParaView, and the run summary JSON. Every file is written
-// to a temporary name and renamed, so a killed run never leaves half a file.
+// to a temporary name and renamed, so a killed run never leaves half a file
+// — but for history.csv, to which a running run appends its rows (see
+// flush_history()).
 #include "simulation.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -24,6 +32,25 @@ void write_atomically(const fs::path& path, const std::string& text) {
         if (!f) throw std::runtime_error("cannot write " + tmp.string());
     }
     fs::rename(tmp, path);
+}
+
+// One write(2) of `text` at the end of `path`: a run killed now leaves the
+// lines written before it whole.
+void append_to(const fs::path& path, const std::string& text) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    const ssize_t n = fd < 0 ? -1 : ::write(fd, text.data(), text.size());
+    if (fd >= 0) ::close(fd);
+    if (n != ssize_t(text.size())) throw std::runtime_error("cannot append to " + path.string());
+}
+
+std::string csv_rows(const std::vector<std::vector<double>>& rows, std::size_t from) {
+    std::ostringstream csv;
+    csv << std::setprecision(12);
+    for (std::size_t r = from; r < rows.size(); ++r) {
+        for (std::size_t c = 0; c < rows[r].size(); ++c) csv << (c ? "," : "") << rows[r][c];
+        csv << "\n";
+    }
+    return csv.str();
 }
 
 // A small VTK XML PolyData writer (ASCII): points, vertices or lines, and
@@ -205,6 +232,7 @@ void Simulation::write_vtk_snapshot() {
 json Simulation::summary() const {
     const World& w = *world_;
     json s;
+    s["finished"] = finished_;  // false in the summaries written at checkpoints
     s["dimension"] = w.dim;
     s["bodies"] = w.bodies.size();
     s["steps"] = w.step_count;
@@ -245,22 +273,58 @@ json Simulation::summary() const {
     return s;
 }
 
+// The rows not yet in history.csv are appended to it; the file is written
+// whole when it does not hold this run's rows (a new run or output folder,
+// a restart, rows cleared by a `histories` command).
+void Simulation::flush_history() {
+    history_flushed_ = std::chrono::steady_clock::now();
+    if (out_dir_.empty() || history_cols_.empty()) return;
+    const fs::path path = fs::path(out_dir_) / "history.csv";
+    if (history_stale_ || history_on_disk_ > history_rows_.size()) {
+        std::string header;
+        for (std::size_t c = 0; c < history_cols_.size(); ++c) header += (c ? "," : "") + history_cols_[c].name;
+        write_atomically(path, header + "\n" + csv_rows(history_rows_, 0));
+        history_stale_ = false;
+    } else if (history_on_disk_ < history_rows_.size()) {
+        append_to(path, csv_rows(history_rows_, history_on_disk_));
+    }
+    history_on_disk_ = history_rows_.size();
+}
+
+bool Simulation::history_flush_due() const {
+    return std::chrono::steady_clock::now() - history_flushed_ >= kHistoryFlushInterval;
+}
+
+// The break log and the summary; a run writes them at each checkpoint and
+// when it ends (history.csv: flush_history()).
 void Simulation::write_outputs() const {
     const fs::path dir(out_dir_);
-    if (!history_cols_.empty()) {
-        std::ostringstream csv;
-        csv << std::setprecision(12);
-        for (std::size_t c = 0; c < history_cols_.size(); ++c) csv << (c ? "," : "") << history_cols_[c].name;
-        csv << "\n";
-        for (const auto& row : history_rows_) {
-            for (std::size_t c = 0; c < row.size(); ++c) csv << (c ? "," : "") << row[c];
-            csv << "\n";
-        }
-        write_atomically(dir / "history.csv", csv.str());
-    }
     if (!world_->bond_breaks.empty() || world_->intact_bonds() > 0)
         write_atomically(dir / "bond_breaks.csv", bond_breaks_csv(*world_));
     write_atomically(dir / "summary.json", summary().dump(2) + "\n");
+}
+
+// A run killed while writing a file leaves its temporary copy; the next run
+// into the folder removes those of the files it writes.
+void Simulation::remove_stale_temporaries() const {
+    if (out_dir_.empty()) return;
+    const fs::path dir(out_dir_);
+    std::vector<fs::path> stale;
+    for (const char* name : {"checkpoint.plab", "last_good.plab", "history.csv", "summary.json", "bond_breaks.csv", "series.pvd"})
+        if (fs::exists(dir / (std::string(name) + ".tmp"))) stale.push_back(dir / (std::string(name) + ".tmp"));
+    for (const auto& [sub, ext] : {std::pair<const char*, const char*>{"vtk", ".vtp.tmp"}, {"png", ".png.tmp"}}) {
+        std::error_code ec;
+        for (fs::directory_iterator it(dir / sub, ec), end; !ec && it != end; it.increment(ec)) {
+            const std::string name = it->path().filename().string();
+            if (name.size() > std::strlen(ext) && name.compare(name.size() - std::strlen(ext), std::string::npos, ext) == 0)
+                stale.push_back(it->path());
+        }
+    }
+    for (const auto& p : stale) {
+        std::error_code ec;
+        fs::remove(p, ec);
+        if (!quiet_) spdlog::info("removed {}, left by a run killed while writing it", p.string());
+    }
 }
 
 void apply_override(json& scene, const std::string& assignment) {

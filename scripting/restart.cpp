@@ -10,6 +10,9 @@
 
 #include <csignal>
 #include <filesystem>
+#include <sstream>
+
+#include <spdlog/spdlog.h>
 
 namespace fs = std::filesystem;
 
@@ -76,6 +79,74 @@ void load_plugins_of(CheckpointReader& in, PluginHost& host, const std::string& 
             in.fail("it needs " + what + ", which does not load now: " + e.what());
         }
     }
+}
+
+// ---- --set on restart ------------------------------------------------------
+
+const char* const kChangeableOnRestart =
+    "timestep.*, gravity, contact_models.N.properties, contact_models.N.calibrate, contact_models.N.max_overlap, "
+    "passes.N.properties, stability.*, domain, histories.*, output.*, metrics.*, description, and the commands "
+    "the run has not begun";
+
+// The keys of a --set PATH=VALUE (apply_override has checked it).
+std::vector<std::string> set_keys(const std::string& assignment) {
+    std::vector<std::string> keys;
+    std::stringstream ss(assignment.substr(0, assignment.find('=')));
+    for (std::string k; std::getline(ss, k, '.');) keys.push_back(k);
+    return keys;
+}
+
+std::string set_path(const std::vector<std::string>& keys) {
+    std::string path = "scene";
+    for (const auto& k : keys) path += "." + k;
+    return path;
+}
+
+// Why a --set of `keys` would not take effect on restart (the state it
+// changes is restored from the checkpoint), or "" when it does. Commands
+// are judged once the checkpoint says which one the run is in.
+std::string restored_instead(const std::vector<std::string>& keys) {
+    const std::string& top = keys[0];
+    for (const char* free : {"timestep", "gravity", "stability", "domain", "histories", "output", "metrics", "description",
+                             "validation"})
+        if (top == free) return "";
+    const std::string second = keys.size() > 2 ? keys[2] : "";
+    if (top == "contact_models") {
+        if (second == "properties" || second == "calibrate" || second == "max_overlap") return "";
+        return "the contact-model assignment is restored from the checkpoint";
+    }
+    if (top == "passes") return second == "properties" ? "" : "the passes are restored from the checkpoint";
+    if (top == "commands") return keys.size() > 1 ? "" : "the run's list of commands is restored from the checkpoint";
+    if (top == "bodies") return "the bodies are restored from the checkpoint";
+    if (top == "walls") return "the walls are restored from the checkpoint";
+    if (top == "plugins") return "the plug-ins are the checkpoint's";
+    if (top == "dimension") return "the state restored from the checkpoint has its dimension";
+    if (top == "materials") return "the bodies' masses are restored from the checkpoint; set the properties a material fills instead";
+    if (top == "variables") return "the stored scene has its variables substituted; set the paths that use them instead";
+    if (top == "skin") return "the neighbour lists are restored from the checkpoint, built with the skin it ran with";
+    return "";  // not a scene key: the loader names it
+}
+
+void refuse_on_restart(const std::vector<std::string>& keys, const std::string& why) {
+    throw InputError(set_path(keys), "cannot be changed on restart (" + why + "); changeable on restart: " +
+                                         kChangeableOnRestart);
+}
+
+bool sets_gravity(const std::vector<std::string>& sets) {
+    for (const auto& s : sets)
+        if (set_keys(s)[0] == "gravity") return true;
+    return false;
+}
+
+// A --set of output.dir (or of the whole output, with a dir) moves the
+// outputs; else they go where the run wrote them.
+bool sets_output_dir(const std::vector<std::string>& sets, const json& scene) {
+    for (const auto& s : sets) {
+        const auto keys = set_keys(s);
+        if (keys == std::vector<std::string>{"output", "dir"}) return true;
+        if (keys == std::vector<std::string>{"output"} && scene["output"].contains("dir")) return true;
+    }
+    return false;
 }
 
 } // namespace
@@ -201,46 +272,82 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& path, const s
     } catch (const json::exception& e) {
         in.fail(std::string("the stored scene does not parse: ") + e.what());
     }
-    for (const auto& s : sets) apply_override(scene, s);
+    for (const auto& s : sets) {
+        apply_override(scene, s);
+        if (const std::string why = restored_instead(set_keys(s)); !why.empty()) refuse_on_restart(set_keys(s), why);
+    }
     auto sim = std::make_unique<Simulation>(scene, scene_dir, host);
-    sim->out_dir_ = out_dir;
+    if (!sets_output_dir(sets, scene)) sim->out_dir_ = out_dir;
+    const Vec gravity = sim->world().gravity;  // the scene's, with any --set
 
     WorldCheckpoint::load(sim->world(), in);
+    if (sets_gravity(sets)) {  // from this step on, as a set command would
+        sim->world().gravity = gravity;
+        sim->world().mark_dirty();
+    }
+    sim->load_run_state(in);
+    sim->check_command_sets(sets);
+    for (const auto& s : sets) {
+        const std::size_t eq = s.find('=');
+        json value = json::parse(s.substr(eq + 1), nullptr, false);
+        if (value.is_discarded()) value = s.substr(eq + 1);
+        sim->restart_log_.push_back("restart: set " + s.substr(0, eq) + " = " + value.dump());
+    }
+    sim->resumed_ = true;
+    return sim;
+}
 
+// The commands up to the one the run is in have been run (or are running):
+// a --set of them would change nothing.
+void Simulation::check_command_sets(const std::vector<std::string>& sets) const {
+    const std::size_t first = next_command_ + (command_started_ ? 1 : 0);
+    for (const auto& s : sets) {
+        const auto keys = set_keys(s);
+        if (keys[0] != "commands") continue;
+        const std::size_t k = std::stoul(keys[1]);
+        if (k >= first) continue;
+        refuse_on_restart(keys, std::string(k < next_command_ ? "the run has done this command" : "the run is in this command") +
+                                    (first < commands_.size() ? "; commands." + std::to_string(first) + " on can change"
+                                                              : "; no command is left to change"));
+    }
+}
+
+// The run's own sections: the progress of its commands and its outputs.
+void Simulation::load_run_state(CheckpointReader& in) {
     in.section("commands");
-    if (in.u64() != sim->commands_.size())
-        in.fail("the scene now has " + std::to_string(sim->commands_.size()) +
+    if (in.u64() != commands_.size())
+        in.fail("the scene now has " + std::to_string(commands_.size()) +
                 " commands, the run had a different number (a --set changed the command list?)");
-    sim->next_command_ = in.u64();
-    sim->command_started_ = in.u8() != 0;
-    sim->command_start_step_ = in.u64();
-    sim->command_end_time_ = in.f64();
-    sim->command_breaks_before_ = in.u64();
-    if (sim->next_command_ > sim->commands_.size()) in.fail("the next command is past the end of the list");
+    next_command_ = in.u64();
+    command_started_ = in.u8() != 0;
+    command_start_step_ = in.u64();
+    command_end_time_ = in.f64();
+    command_breaks_before_ = in.u64();
+    if (next_command_ > commands_.size()) in.fail("the next command is past the end of the list");
 
     in.section("outputs");
     std::vector<std::string> columns(in.u64());
     for (auto& c : columns) c = in.str();
     std::vector<std::string> now;
-    for (const auto& c : sim->history_cols_) now.push_back(c.name);
+    for (const auto& c : history_cols_) now.push_back(c.name);
     const std::uint64_t n_rows = in.u64();
     std::vector<std::vector<double>> rows;
     for (std::uint64_t r = 0; r < n_rows; ++r) rows.push_back(in.column<double>());
-    if (columns == now) sim->history_rows_ = std::move(rows);  // else the histories start anew (a --set changed them)
-    sim->vtk_frames_ = int(in.u64());
-    sim->next_vtk_time_ = in.f64();
-    sim->vtk_series_.resize(in.u64());
-    for (auto& [t, name] : sim->vtk_series_) {
+    if (columns == now) history_rows_ = std::move(rows);
+    else if (!columns.empty()) restart_log_.push_back("restart: the history columns differ from the checkpoint's: the rows start anew");
+    vtk_frames_ = int(in.u64());
+    next_vtk_time_ = in.f64();
+    vtk_series_.resize(in.u64());
+    for (auto& [t, name] : vtk_series_) {
         t = in.f64();
         name = in.str();
     }
-    sim->png_frames_ = int(in.u64());
-    sim->next_png_time_ = in.f64();
-    sim->checkpoint_every_ = in.f64();
-    sim->next_checkpoint_time_ = in.f64();
+    png_frames_ = int(in.u64());
+    next_png_time_ = in.f64();
+    checkpoint_every_ = in.f64();
+    next_checkpoint_time_ = in.f64();
     in.section("end");
-    sim->resumed_ = true;
-    return sim;
+    in.finish();
 }
 
 } // namespace plab

@@ -20,6 +20,7 @@
 namespace plab {
 
 class Materials;
+class CheckpointReader;
 class CheckpointWriter;
 
 // Applies "a.b.0.c=value" to a scene: the value is read as JSON when it
@@ -68,6 +69,7 @@ public:
     void set_output_dir(const std::string& dir) {
         out_dir_ = dir;
         out_dir_from_ = "--out";
+        history_stale_ = true;
     }
     void set_quiet(bool q) { quiet_ = q; }
     // Runs every command of the scene in order.
@@ -90,8 +92,10 @@ public:
     // progress of the current one, output counters — written atomically.
     void save_checkpoint(const std::string& path) const;
     // The run saved in a checkpoint, ready to continue with run(); `sets`
-    // (PATH=VALUE) change the scene it was started from. Throws
-    // CheckpointError or InputError saying exactly why it cannot load.
+    // (PATH=VALUE) change the scene it was started from, from the restart
+    // step on: a set of what the checkpoint restores (bodies, walls, the
+    // commands run so far, ...) is refused by path. run() logs each change.
+    // Throws CheckpointError or InputError saying exactly why it cannot load.
     static std::unique_ptr<Simulation> restart(const std::string& path, const std::vector<std::string>& sets = {},
                                                std::shared_ptr<PluginHost> host = nullptr);
     // A checkpoint to checkpoint_path() every `seconds` of simulated time (0: never).
@@ -155,6 +159,9 @@ private:
     // the run's own sections of a checkpoint (commands, outputs) at the
     // world's last-good snapshot (runs with outputs; World::on_snapshot)
     std::string last_good_run_state_;
+    std::vector<std::string> restart_log_;  // what a restart's --set changed, logged when the run starts
+    void load_run_state(CheckpointReader& in);
+    void check_command_sets(const std::vector<std::string>& sets) const;
     void write_plugins_and_scene(CheckpointWriter& out) const;
     void write_run_state(CheckpointWriter& out) const;
     std::string run_state_bytes() const;
@@ -172,8 +179,20 @@ private:
         bool any() const { return history || vtk || png || checkpoint; }
     };
     DueOutputs due_after_step() const;
-    void finish_run(std::clock_t cpu0);
-    void write_outputs() const;
+    void update_run_figures();
+    void finish_run();
+    void write_outputs() const;  // bond_breaks.csv, summary.json
+    void remove_stale_temporaries() const;
+    // history.csv: the rows of history_rows_ it holds; whether it must be
+    // written whole; when rows were last written (flush_history())
+    std::size_t history_on_disk_ = 0;
+    bool history_stale_ = true;
+    std::chrono::steady_clock::time_point history_flushed_{};
+    static constexpr std::chrono::seconds kHistoryFlushInterval{2};
+    void flush_history();
+    bool history_flush_due() const;
+    std::clock_t cpu_started_ = 0;
+    bool finished_ = false;  // run() ended, not stopped by a signal (summary.json: "finished")
     void check_domain(const std::string& where, std::size_t first) const;
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
     GeneratorLimits limits_;

@@ -15,9 +15,8 @@ using plab::Contact;
 // The batch loop built twice, for SSE2 and for AVX2 (picked once at load
 // time): four contacts per instruction where the CPU has AVX2. No FMA in
 // either, so both give the same bits.
-__attribute__((target_clones("avx2", "default"))) void linear_rows(const plab::linear_law::Params& p,
-                                                                   const plab_contact_batch& b, std::size_t k0,
-                                                                   std::size_t k1, int shear_slot, double stiffness) {
+PLAB_TARGET_CLONES("avx2", "default") void linear_rows(const plab::linear_law::Params& p, const plab_contact_batch& b,
+                                                      std::size_t k0, std::size_t k1, int shear_slot, double stiffness) {
     plab::linear_law::apply_rows(p, b, k0, k1, shear_slot, stiffness);
 }
 

@@ -76,11 +76,12 @@ template <KernelKind K, Viscosity V, bool Anticlump, bool NoSlip>
 // at load time): four or eight pairs per instruction where the CPU has
 // them (AVX-512: -4 % time on the dam break). No FMA in any, so all give
 // the bits of law().
-// (flatten: the choices of with_choices() and the law inlined into each
-// clone, else the loops are built for SSE2 only)
-__attribute__((target_clones("avx512f", "avx2", "default"), flatten)) void sph_rows(const plab::sph::LawParams& p,
-                                                                         const plab_contact_batch& b, std::size_t k0,
-                                                                         std::size_t k1) {
+// (flattened: the choices of with_choices() and the law inlined into each
+// clone, else the loops are built for SSE2 only; clang builds one, see
+// PLAB_TARGET_CLONES_FLAT)
+PLAB_TARGET_CLONES_FLAT("avx512f", "avx2", "default") void sph_rows(const plab::sph::LawParams& p,
+                                                                    const plab_contact_batch& b, std::size_t k0,
+                                                                    std::size_t k1) {
     const int dim3 = b.dim == 3;
     const double* const* f = b.body_fields;
     constexpr uint64_t no_wall_dv = (1u << wall_dvx) | (1u << wall_dvy) | (1u << wall_dvz);

@@ -9,8 +9,11 @@
 #include <plab_core/checkpoint.hpp>
 
 #include <catch2/catch.hpp>
+#include <zlib.h>
 
 #include <csignal>
+#include <cstring>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -243,17 +246,40 @@ std::string restart_error(const fs::path& p) {
     }
     return "<loaded>";
 }
-// Replaces the first occurrence of `from` by `to` (same length).
+std::uint64_t u64_at(const std::string& bytes, std::size_t at) {
+    std::uint64_t v = 0;
+    std::memcpy(&v, bytes.data() + at, sizeof v);
+    return v;
+}
+std::uint32_t crc_of(std::uint32_t crc, const std::string& bytes, std::size_t at, std::size_t n) {
+    return std::uint32_t(crc32_z(crc, reinterpret_cast<const Bytef*>(bytes.data() + at), n));
+}
+// Every CRC-32 of a checkpoint made to match its bytes again (the layout of
+// checkpoint.hpp): a file changed on purpose, to reach the checks behind them.
+std::string resealed(std::string bytes) {
+    std::uint32_t crc = crc_of(0, bytes, 0, 16);
+    std::memcpy(&bytes[16], &crc, sizeof crc);
+    for (std::size_t at = 20; at < bytes.size();) {
+        const std::size_t contents = at + 16 + u64_at(bytes, at), length = u64_at(bytes, contents - 8);
+        REQUIRE(contents + length + 4 <= bytes.size());
+        crc = crc_of(crc_of(0, bytes, contents, length), bytes, at, contents - at);
+        std::memcpy(&bytes[contents + length], &crc, sizeof crc);
+        at = contents + length + 4;
+    }
+    return bytes;
+}
+// Replaces the first occurrence of `from` by `to` (same length), checksums
+// made to match.
 std::string patched(std::string bytes, const std::string& from, const std::string& to) {
     const auto at = bytes.find(from);
     REQUIRE(at != std::string::npos);
     REQUIRE(from.size() == to.size());
-    return bytes.replace(at, from.size(), to);
+    return resealed(bytes.replace(at, from.size(), to));
 }
 
 } // namespace
 
-TEST_CASE("a checkpoint that cannot load says why: foreign, newer, truncated, missing plug-in, lost history slot",
+TEST_CASE("a checkpoint that cannot load says why: foreign, newer, damaged, truncated, missing plug-in, lost history slot",
           "[restart][errors]") {
     const fs::path good = scratch("good.plab");
     {
@@ -270,14 +296,23 @@ TEST_CASE("a checkpoint that cannot load says why: foreign, newer, truncated, mi
 
     std::string newer = bytes;
     newer[8] = char(kCheckpointFormat + 1);
-    spit(bad, newer);
+    spit(bad, resealed(newer));
     CHECK_THAT(restart_error(bad), Contains("format version " + std::to_string(kCheckpointFormat + 1)) &&
                                        Contains("newer than this plab reads"));
+    spit(bad, newer);  // the version's bit flipped: the header's CRC-32 is of the true one
+    CHECK_THAT(restart_error(bad), Contains("the header is damaged (format version " +
+                                            std::to_string(kCheckpointFormat + 1) + " where its CRC-32 says " +
+                                            std::to_string(kCheckpointFormat) + ")"));
 
     std::string swapped = bytes;
-    std::swap(swapped[12], swapped[15]);
+    std::reverse(swapped.begin() + 12, swapped.begin() + 16);
     spit(bad, swapped);
     CHECK_THAT(restart_error(bad), Contains("other byte order"));
+
+    std::string damaged = bytes;
+    damaged[bytes.find(std::string("\x06\0\0\0\0\0\0\0bodies", 14)) + 200] ^= 4;  // in the bodies' columns
+    spit(bad, damaged);
+    CHECK_THAT(restart_error(bad), Contains("section 'bodies' is damaged (CRC-32 mismatch: stored 0x"));
 
     spit(bad, bytes.substr(0, bytes.size() / 2));
     CHECK_THAT(restart_error(bad), Contains("ends early") || Contains("runs past the end"));
@@ -289,6 +324,42 @@ TEST_CASE("a checkpoint that cannot load says why: foreign, newer, truncated, mi
     spit(bad, patched(bytes, "shear_force_y", "shear_force_q"));
     CHECK_THAT(restart_error(bad), Contains("history slot 'shear_force_q' of model 'linear'") &&
                                        Contains("shear_force_x, shear_force_y, shear_force_z"));
+}
+
+namespace {
+
+// The checkpoint as format 2 wrote it: no header CRC, sections without
+// lengths and CRCs.
+std::string as_format_2(const std::string& bytes) {
+    std::string out = bytes.substr(0, 16);
+    const std::uint32_t two = 2;
+    std::memcpy(&out[8], &two, sizeof two);
+    for (std::size_t at = 20; at < bytes.size();) {
+        const std::size_t name = 8 + u64_at(bytes, at), length = u64_at(bytes, at + name);
+        out += bytes.substr(at, name) + bytes.substr(at + name + 8, length);
+        at += name + 8 + length + 4;
+    }
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("a checkpoint of format 2 (no checksums) still restarts to the same state", "[restart]") {
+    const fs::path file = scratch("v3.plab"), old = scratch("v2.plab");
+    {
+        auto sim = start(pile(), false);
+        sim->cycle(300);
+        sim->save_checkpoint(file.string());
+    }
+    spit(old, as_format_2(slurp(file)));
+    std::uint64_t hash[2] = {0, 0};
+    for (int v = 0; v < 2; ++v) {
+        auto sim = Simulation::restart((v ? old : file).string());
+        sim->set_quiet(true);
+        sim->cycle(100);
+        hash[v] = sim->world().state_hash();
+    }
+    CHECK(hash[1] == hash[0]);
 }
 
 TEST_CASE("a run that goes unstable leaves its last good state as a checkpoint that a smaller timestep finishes",

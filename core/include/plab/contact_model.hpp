@@ -48,6 +48,24 @@
 #define PLAB_EXPORT __attribute__((visibility("default")))
 #endif
 
+// A batch loop (law_rows) built for each CPU target listed, the best one
+// picked when the library loads, e.g. PLAB_TARGET_CLONES("avx2", "default").
+// PLAB_TARGET_CLONES_FLAT also inlines every call in the loop (flatten), so
+// that what it calls is built for each target too. Clang refuses
+// target_clones together with flatten; there the loop is built once,
+// flattened, for the build's own target (-march=native by default): the
+// same bits, as the clones use no FMA.
+#if defined(__clang__)
+#define PLAB_TARGET_CLONES(...) __attribute__((target_clones(__VA_ARGS__)))
+#define PLAB_TARGET_CLONES_FLAT(...) __attribute__((flatten))
+#elif defined(__GNUC__)
+#define PLAB_TARGET_CLONES(...) __attribute__((target_clones(__VA_ARGS__)))
+#define PLAB_TARGET_CLONES_FLAT(...) __attribute__((target_clones(__VA_ARGS__), flatten))
+#else
+#define PLAB_TARGET_CLONES(...)
+#define PLAB_TARGET_CLONES_FLAT(...)
+#endif
+
 namespace plab {
 
 // One contact of a batch: typed access to the host's columns at index k.

@@ -1,13 +1,18 @@
 // Checkpoints: the complete state of a World in a versioned binary file, so a
 // run stopped at step k and restarted gives bit-for-bit the state the
-// uninterrupted run has at every later step (docs/restart.md).
+// uninterrupted run has at every later step (docs/restart.md, which also
+// lists the format versions).
 //
 // File layout: the magic "PLABCKPT", the format version (u32), an endianness
-// marker (u32 0x01020304 as written), then named sections. Every section
-// starts with its name, so a damaged or foreign file is refused with the name
-// of what was expected. Contact history is stored by slot name: a model that
-// gained a slot since the file was written loads it with the slot's default;
-// a model that lost one is refused, naming the slot.
+// marker (u32 0x01020304 as written) and the CRC-32 of those 16 bytes, then
+// named sections. A section is its name (u64 length, characters), the length
+// of its contents (u64), the contents and a CRC-32 (u32) of the contents
+// followed by the name and length as written. The reader checks a section's
+// CRC before it parses the section, so a damaged file is refused with the
+// name of the damaged section, and a foreign one with the name of what was
+// expected. Contact history is stored by slot name: a model that gained a
+// slot since the file was written loads it with the slot's default; a model
+// that lost one is refused, naming the slot.
 #pragma once
 
 #include "world.hpp"
@@ -22,12 +27,12 @@
 
 namespace plab {
 
-// Format versions this build writes and reads.
-//   1  the first
-//   2  adds the section "stability": the instability detector's energy and
-//      domain baseline (a version-1 file re-measures it at the restart step)
-constexpr std::uint32_t kCheckpointFormat = 2;
+// The format version this build writes, and the oldest it reads (what each
+// version changed: docs/restart.md). Versions before kCheckpointFramedFormat
+// have no lengths or checksums.
+constexpr std::uint32_t kCheckpointFormat = 3;
 constexpr std::uint32_t kCheckpointOldestFormat = 1;
+constexpr std::uint32_t kCheckpointFramedFormat = 3;
 
 // A checkpoint that cannot be written or loaded; the message says why.
 class CheckpointError : public std::runtime_error {
@@ -40,14 +45,20 @@ public:
     // Sections in memory, without the file header: a part of a checkpoint
     // to append() to a file's writer later.
     CheckpointWriter() = default;
+    CheckpointWriter(CheckpointWriter&&) = default;
+    CheckpointWriter& operator=(CheckpointWriter&&) = default;
+    // A writer to a file that is never committed removes its `path`.tmp.
+    ~CheckpointWriter();
     // A checkpoint file: the header, then sections streamed to `path`.tmp
     // instead of held in memory (a million-ball checkpoint is hundreds of
     // MB); commit() renames it to `path`, so a run killed while writing
     // leaves the previous file.
     static CheckpointWriter to_file(const std::string& path);
     void commit();
-    void append(const std::string& bytes) { raw(bytes.data(), bytes.size()); }
-    void section(const std::string& name) { str(name); }
+    // Whole sections from take() of a writer in memory.
+    void append(const std::string& sections);
+    // Ends the section being written (its length and CRC-32), begins `name`.
+    void section(const std::string& name);
     void u8(std::uint8_t v) { raw(&v, 1); }
     void u32(std::uint32_t v) { raw(&v, sizeof v); }
     void u64(std::uint64_t v) { raw(&v, sizeof v); }
@@ -62,17 +73,23 @@ public:
         u64(v.size());
         for (const Vec& x : v) vec(x);
     }
-    const std::string& bytes() const { return data_; }
-    std::string take() { return std::move(data_); }  // the bytes, without a copy; the writer is spent
+    // The sections written, the last one ended; the writer is spent.
+    std::string take();
 
 private:
-    void raw(const void* p, std::size_t n) {
-        if (file_) file_->write(static_cast<const char*>(p), std::streamsize(n));
-        else data_.append(static_cast<const char*>(p), n);
-    }
+    void raw(const void* p, std::size_t n);  // a section's contents: counted and checksummed
+    void put(const void* p, std::size_t n);  // as it is
+    void end_section();
     std::string data_;
     std::unique_ptr<std::ofstream> file_;
     std::string path_;
+    std::uint64_t written_ = 0;  // bytes put so far
+    // the section being written: where its length goes, its header as
+    // written (name and a placeholder length), its contents' length and CRC
+    bool open_ = false;
+    std::uint64_t length_at_ = 0, length_ = 0;
+    std::string header_;
+    std::uint32_t crc_ = 0;
 };
 
 class CheckpointReader {
@@ -82,8 +99,11 @@ public:
     explicit CheckpointReader(const std::string& path);
     std::uint32_t format() const { return format_; }
     const std::string& path() const { return path_; }
-    // Reads a section name and checks it is the one expected here.
+    // Reads a section's name and checks it is the one expected here, and
+    // (framed formats) that the section is read whole, and its CRC-32.
     void section(const std::string& name);
+    // After the last section: nothing is left unread.
+    void finish();
     std::uint8_t u8() { std::uint8_t v; raw(&v, 1); return v; }
     std::uint32_t u32() { std::uint32_t v; raw(&v, sizeof v); return v; }
     std::uint64_t u64() { std::uint64_t v; raw(&v, sizeof v); return v; }
@@ -105,13 +125,19 @@ public:
     [[noreturn]] void fail(const std::string& why) const;
 
 private:
+    void read_header();
     void raw(void* p, std::size_t n);
     std::uint64_t count(std::size_t element_bytes);  // a length that fits in what is left
+    std::uint64_t limit() const { return framed_ && !section_.empty() ? end_ : size_; }
+    void close_section();  // checks the section was read to its end, skips its CRC
+    void check_crc(const std::string& name, std::uint64_t header_at);
     std::string path_;
     std::ifstream file_;
     std::string section_;
     std::uint64_t size_ = 0, pos_ = 0;  // the file's length and the read position
+    std::uint64_t end_ = 0;  // framed: the end of the section's contents
     std::uint32_t format_ = 0;
+    bool framed_ = false;
 };
 
 // The World's complete state (a friend of World).
