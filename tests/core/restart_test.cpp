@@ -8,6 +8,8 @@
 
 #include <plab_core/checkpoint.hpp>
 
+#include "../support/file_bytes.hpp"
+
 #include <catch2/catch.hpp>
 #include <zlib.h>
 
@@ -28,6 +30,9 @@ namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
 namespace {
+
+using testing_support::slurp;
+using testing_support::spit;
 
 void use_threads(int threads) {
 #ifdef _OPENMP
@@ -230,14 +235,6 @@ TEST_CASE("periodic checkpoints of a run restart to the same final state", "[res
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-void spit(const fs::path& p, const std::string& bytes) {
-    std::ofstream f(p, std::ios::binary);
-    f << bytes;
-}
 std::string restart_error(const fs::path& p) {
     try {
         Simulation::restart(p.string());

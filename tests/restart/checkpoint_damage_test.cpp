@@ -9,6 +9,8 @@
 
 #include <plab_core/checkpoint.hpp>
 
+#include "../support/file_bytes.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <condition_variable>
@@ -29,20 +31,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using testing_support::slurp;
+using testing_support::spit;
+
 fs::path scratch(const std::string& name) {
     const fs::path dir = fs::temp_directory_path() / ("plab_damage_test_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     return dir / name;
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
-void spit(const fs::path& p, const std::string& bytes) {
-    std::ofstream f(p, std::ios::binary);
-    f << bytes;
 }
 
 // A part of the file: the header, or one section from its name to the next.
