@@ -603,16 +603,23 @@ bool Simulation::run_command(const Command& c) {
 // Refused before the first step: an output due every step of a run, and a
 // solve that would need more than twice its max_cycles at today's timestep
 // (one that stops at a bond break ends when it breaks, so it is not judged).
+// The step the run will start with and what sets it: the fixed step, the
+// last step before a checkpoint, or the safety factor times the nominal
+// stable step of the scene's contacts (no contact exists before the run).
+Simulation::PlannedStep Simulation::planned_timestep() {
+    World& w = *world_;
+    if (w.fixed_dt > 0) return {w.fixed_dt, "scene.timestep.fixed"};
+    if (resumed_ && w.last_dt > 0) return {w.last_dt, "the last step before the checkpoint"};
+    const StableStep s = w.nominal_timestep();
+    return {w.safety_factor * s.critical,
+            "scene.timestep.safety_factor " + short_number(w.safety_factor) + " x the stable step, limited by " + s.limited_by};
+}
+
 void Simulation::check_run_length() {
     World& w = *world_;
-    double dt = w.fixed_dt;
-    std::string set_by = "scene.timestep.fixed";
-    if (dt == 0 && resumed_) { dt = w.last_dt; set_by = "the last step before the checkpoint"; }
-    if (dt == 0) {
-        const StableStep s = w.nominal_timestep();
-        dt = w.safety_factor * s.critical;
-        set_by = "scene.timestep.safety_factor " + short_number(w.safety_factor) + " x the stable step, limited by " + s.limited_by;
-    }
+    const PlannedStep step = planned_timestep();  // (named: lambdas below capture it)
+    const double dt = step.dt;
+    const std::string& set_by = step.set_by;
     if (!(dt > 0) || !std::isfinite(dt)) return;
     const auto check_interval = [&](double interval, const std::string& where) {
         if (interval > 0 && !out_dir_.empty() && interval < dt)

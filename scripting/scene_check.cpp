@@ -64,11 +64,8 @@ void Simulation::check_report(std::ostream& out) {
     out << "dimension: " << w.dim << "D, gravity " << short_number(w.gravity.norm()) << " m/s2\n";
     print_groups(out, w);
     print_contact_models(out, w);
-    const StableStep s = w.nominal_timestep();
-    const double dt = w.fixed_dt > 0 ? w.fixed_dt : w.safety_factor * s.critical;
-    out << "timestep: " << (w.fixed_dt > 0 ? "fixed " : "automatic, " + short_number(w.safety_factor) + " x ")
-        << (w.fixed_dt > 0 ? short_number(w.fixed_dt) : short_number(s.critical)) << " s; stable limit "
-        << short_number(s.critical) << " s (" << s.limited_by << ")\n";
+    const auto [dt, set_by] = planned_timestep();
+    out << "timestep: " << short_number(dt) << " s (" << set_by << ")\n";
     double steps = 0, time = 0;
     out << "commands:\n";
     for (const Command& c : commands_) {

@@ -170,6 +170,11 @@ private:
     void keep_last_good();
     std::string write_last_good() const;  // its path, or "" when none is kept
     void after_step();
+    struct PlannedStep {
+        double dt;
+        std::string set_by;
+    };
+    PlannedStep planned_timestep();
     void check_run_length();
     void make_output_dir() const;
     std::vector<double> sample_history_row() const;
