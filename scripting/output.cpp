@@ -1,9 +1,10 @@
-// Outputs of a run: history CSV, VTK XML PolyData snapshots (.vtp) with a
-// .pvd series for ParaView, and the run summary JSON. Every file is written
+// Outputs of a run: history CSV, the VTK series (.pvd of .vtp frames,
+// vtk_output.cpp) and the run summary JSON. Every file is written
 // to a temporary name and renamed, so a killed run never leaves half a file
 // — but for history.csv, to which a running run appends its rows (see
 // flush_history()).
 #include "simulation.hpp"
+#include "vtk_output.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -53,103 +54,6 @@ std::string csv_rows(const std::vector<std::vector<double>>& rows, std::size_t f
     return csv.str();
 }
 
-// A small VTK XML PolyData writer (ASCII): points, vertices or lines, and
-// point/cell data arrays.
-struct VtpWriter {
-    std::ostringstream points, conn, offsets, data;
-    std::size_t n_points = 0, n_cells = 0;
-    bool lines = false;
-
-    void array(const std::string& name, int comps, const std::vector<double>& values) {
-        data << "<DataArray type=\"Float64\" Name=\"" << name << "\" NumberOfComponents=\"" << comps
-             << "\" format=\"ascii\">\n";
-        for (double v : values) data << v << ' ';
-        data << "\n</DataArray>\n";
-    }
-    std::string finish() const {
-        std::ostringstream s;
-        s << std::setprecision(10);
-        s << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-          << "<PolyData>\n<Piece NumberOfPoints=\"" << n_points << "\" NumberOfVerts=\"" << (lines ? 0 : n_cells)
-          << "\" NumberOfLines=\"" << (lines ? n_cells : 0) << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
-          << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
-          << points.str() << "\n</DataArray></Points>\n"
-          << (lines ? "<CellData>\n" : "<PointData>\n") << data.str() << (lines ? "</CellData>\n" : "</PointData>\n")
-          << (lines ? "<Lines>\n" : "<Verts>\n")
-          << "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n" << conn.str() << "\n</DataArray>\n"
-          << "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n" << offsets.str() << "\n</DataArray>\n"
-          << (lines ? "</Lines>\n" : "</Verts>\n") << "</Piece>\n</PolyData>\n</VTKFile>\n";
-        return s.str();
-    }
-};
-
-std::vector<double> flatten(const std::vector<Vec>& v) {
-    std::vector<double> out;
-    out.reserve(3 * v.size());
-    for (const Vec& x : v) out.insert(out.end(), {x.x(), x.y(), x.z()});
-    return out;
-}
-
-std::string balls_vtp(const World& w) {
-    VtpWriter v;
-    const Bodies& b = w.bodies;
-    v.n_points = v.n_cells = b.size();
-    v.points << std::setprecision(12);
-    v.data << std::setprecision(12);
-    for (std::size_t i = 0; i < b.size(); ++i) {
-        v.points << b.position[i].x() << ' ' << b.position[i].y() << ' ' << b.position[i].z() << ' ';
-        v.conn << i << ' ';
-        v.offsets << i + 1 << ' ';
-    }
-    v.array("radius", 1, b.radius);
-    v.array("id", 1, std::vector<double>(b.id.begin(), b.id.end()));
-    v.array("group", 1, std::vector<double>(b.group.begin(), b.group.end()));
-    v.array("velocity", 3, flatten(b.velocity));
-    v.array("angular_velocity", 3, flatten(b.angular_velocity));
-    v.array("force", 3, flatten(b.force));
-    for (std::size_t f = 0; f < w.field_names().size(); ++f)
-        if (w.field_computed(int(f))) v.array(w.field_names()[f], 1, const_cast<World&>(w).field(int(f)));
-    std::vector<double> stress;  // per-ball average stress, tension positive (row-major 3x3)
-    stress.reserve(9 * b.size());
-    for (const auto& sigma : w.ball_stress())
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) stress.push_back(sigma(r, c));
-    v.array("stress", 9, stress);
-    return v.finish();
-}
-
-// Ball–ball contacts as lines between centres, with the contact force.
-std::string contacts_vtp(const World& w) {
-    VtpWriter v;
-    v.lines = true;
-    v.points << std::setprecision(12);
-    v.data << std::setprecision(12);
-    std::vector<double> force, normal_force, bonded;
-    for (const auto& inst : w.instances()) {
-        const ContactSet& s = inst->balls;
-        const int bond_slot = inst->desc->persist_slot;
-        for (std::size_t k = 0; k < s.size(); ++k) {
-            if (!s.active[k]) continue;
-            bonded.push_back(bond_slot >= 0 && s.history[k * inst->stride + bond_slot] > 0 ? 1.0 : 0.0);
-            for (int e : {s.end1[k], s.end2[k]}) {
-                const Vec& p = w.bodies.position[e];
-                v.points << p.x() << ' ' << p.y() << ' ' << p.z() << ' ';
-            }
-            v.conn << 2 * v.n_cells << ' ' << 2 * v.n_cells + 1 << ' ';
-            ++v.n_cells;
-            v.offsets << 2 * v.n_cells << ' ';
-            const Vec f(&s.force[3 * k]), n = w.contact_normal(s, k);
-            force.insert(force.end(), {f.x(), f.y(), f.z()});
-            normal_force.push_back(f.dot(n));
-        }
-    }
-    v.n_points = 2 * v.n_cells;
-    v.array("force", 3, force);
-    v.array("normal_force", 1, normal_force);
-    v.array("bonded", 1, bonded);
-    return v.finish();
-}
-
 // Every broken bond: when, where, between which balls, and how.
 std::string bond_breaks_csv(const World& w) {
     std::ostringstream csv;
@@ -158,29 +62,6 @@ std::string bond_breaks_csv(const World& w) {
         csv << b.step << ',' << b.time << ',' << b.id1 << ',' << b.id2 << ',' << b.point.x() << ',' << b.point.y() << ','
             << b.point.z() << ',' << (b.mode == PLAB_BREAK_TENSION ? "tension" : "shear") << "\n";
     return csv.str();
-}
-
-// Wall facets as lines (2D segments, 3D triangle edges).
-std::string walls_vtp(const World& w) {
-    VtpWriter v;
-    v.lines = true;
-    std::vector<double> wall_index;
-    for (const Facet& f : w.walls.facets) {
-        std::vector<Vec> pts;
-        if (f.kind == FacetKind::segment) pts = {f.a, f.b};
-        else if (f.kind == FacetKind::triangle) pts = {f.a, f.b, f.c, f.a};
-        else continue;  // infinite planes are not drawn
-        for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-            for (const Vec& p : {pts[k], pts[k + 1]}) v.points << p.x() << ' ' << p.y() << ' ' << p.z() << ' ';
-            v.conn << 2 * v.n_cells << ' ' << 2 * v.n_cells + 1 << ' ';
-            ++v.n_cells;
-            v.offsets << 2 * v.n_cells << ' ';
-            wall_index.push_back(f.wall);
-        }
-    }
-    v.n_points = 2 * v.n_cells;
-    v.array("wall", 1, wall_index);
-    return v.finish();
 }
 
 // What makes a model expensive (issue 7): its contacts, the neighbours per
@@ -215,16 +96,21 @@ void Simulation::write_vtk_snapshot() {
     const fs::path dir(out_dir_);
     char name[32];
     std::snprintf(name, sizeof name, "%05d", vtk_frames_++);
-    write_atomically(dir / "vtk" / (std::string("balls_") + name + ".vtp"), balls_vtp(*world_));
-    write_atomically(dir / "vtk" / (std::string("contacts_") + name + ".vtp"), contacts_vtp(*world_));
-    write_atomically(dir / "vtk" / (std::string("walls_") + name + ".vtp"), walls_vtp(*world_));
+    std::vector<std::string> parts = {"balls"};
+    if (vtk_.any_contacts()) parts.push_back("contacts");
+    if (vtk_.walls) parts.push_back("walls");
+    for (const std::string& part : parts) {
+        const std::string text = part == "balls"    ? balls_vtp(*world_, vtk_)
+                                 : part == "walls" ? walls_vtp(*world_, vtk_)
+                                                   : contacts_vtp(*world_, vtk_);
+        write_atomically(dir / "vtk" / (part + "_" + name + ".vtp"), text);
+    }
     vtk_series_.emplace_back(world_->time, name);
     std::ostringstream pvd;
     pvd << std::setprecision(12) << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
     for (const auto& [t, n] : vtk_series_)
-        for (const char* part : {"balls", "contacts", "walls"})
-            pvd << "<DataSet timestep=\"" << t << "\" part=\"" << (part[0] == 'b' ? 0 : part[0] == 'c' ? 1 : 2)
-                << "\" file=\"vtk/" << part << "_" << n << ".vtp\"/>\n";
+        for (std::size_t p = 0; p < parts.size(); ++p)
+            pvd << "<DataSet timestep=\"" << t << "\" part=\"" << p << "\" file=\"vtk/" << parts[p] << "_" << n << ".vtp\"/>\n";
     pvd << "</Collection>\n</VTKFile>\n";
     write_atomically(dir / "series.pvd", pvd.str());
 }
@@ -267,6 +153,11 @@ json Simulation::summary() const {
                         {"message", d.message()}};
     }
     if (!metrics_.is_null()) s["metrics"] = metrics_;
+    if (!history_cols_.empty()) {
+        json units = json::object();  // plab plot labels its axes with these
+        for (const auto& c : history_cols_) units[c.name] = c.unit;
+        s["history_units"] = units;
+    }
     std::ostringstream hash;
     hash << std::hex << w.state_hash();
     s["state_hash"] = hash.str();
@@ -310,7 +201,7 @@ void Simulation::remove_stale_temporaries() const {
     if (out_dir_.empty()) return;
     const fs::path dir(out_dir_);
     std::vector<fs::path> stale;
-    for (const char* name : {"checkpoint.plab", "last_good.plab", "history.csv", "summary.json", "bond_breaks.csv", "series.pvd"})
+    for (const char* name : {"checkpoint.plab", "last_good.plab", "history.csv", "summary.json", "bond_breaks.csv", "series.pvd", "watch.png"})
         if (fs::exists(dir / (std::string(name) + ".tmp"))) stale.push_back(dir / (std::string(name) + ".tmp"));
     for (const auto& [sub, ext] : {std::pair<const char*, const char*>{"vtk", ".vtp.tmp"}, {"png", ".png.tmp"}}) {
         std::error_code ec;

@@ -3,7 +3,8 @@
 # Needs root (or sudo) only when something must be installed.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libeigen3-dev libboost-dev libboost-filesystem-dev
-          nlohmann-json3-dev libspdlog-dev catch2 libcairo2-dev libmuparser-dev python3 zlib1g-dev)
+          nlohmann-json3-dev libspdlog-dev catch2 libcairo2-dev libmuparser-dev python3 zlib1g-dev
+          python3-vtk9)  # python3-vtk9: the test that VTK reads our .vtp frames
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
