@@ -2,6 +2,7 @@
 #include "generators.hpp"
 #include "measurements/measurement.hpp"
 #include "metrics.hpp"
+#include "quantities.hpp"
 #include "simulation.hpp"
 #include "variables.hpp"
 #include "plab_core/error.hpp"
@@ -204,15 +205,22 @@ void Simulation::load_histories(const Node& n) {
         } else {
             col.name = h.string_or("name", h.at("quantity").string());
             col.sample = quantity(h, *world_);
+            col.unit = quantity_unit(h.at("quantity").string(), *world_);
         }
         history_cols_.push_back(std::move(col));
     }
 }
 
 void Simulation::load_output(const Node& n) {
-    n.allow_keys({"dir", "vtk_interval", "png"});
+    n.allow_keys({"dir", "vtk_interval", "vtk", "png"});
     if (n.has("dir")) out_dir_ = n.at("dir").string();
-    vtk_interval_ = n.number_or("vtk_interval", 0.0, 0.0, kInf, false, true);
+    if (n.has("vtk") && n.has("vtk_interval"))
+        n.at("vtk_interval").fail("give the interval once: vtk_interval is short for vtk.interval");
+    if (n.has("vtk")) vtk_ = read_vtk_options(n.at("vtk"));
+    if (n.has("vtk_interval")) {
+        vtk_.interval = n.number_or("vtk_interval", 0.0, 0.0, kInf, false, true);
+        vtk_interval_path_ = "scene.output.vtk_interval";
+    }
     if (n.has("png")) load_png_output(n.at("png"));
 }
 
@@ -435,7 +443,7 @@ Simulation::DueOutputs Simulation::due_after_step() const {
         return interval > 0 && !out_dir_.empty() && w.time + 1e-12 >= next;
     };
     return {history_every_ > 0 && !history_cols_.empty() && w.step_count % std::uint64_t(history_every_) == 0,
-            at(vtk_interval_, next_vtk_time_), at(png_interval_, next_png_time_),
+            at(vtk_.interval, next_vtk_time_), at(png_interval_, next_png_time_),
             at(checkpoint_every_, next_checkpoint_time_)};
 }
 
@@ -462,12 +470,13 @@ void Simulation::after_step() {
     if (due.vtk || due.png || due.checkpoint || (due.history && history_flush_due())) flush_history();
     if (due.vtk) {
         write_vtk_snapshot();
-        next_vtk_time_ += vtk_interval_;
+        next_vtk_time_ += vtk_.interval;
     }
     if (due.png) {
         write_png_snapshot();
         next_png_time_ += png_interval_;
     }
+    if (watch_ && std::chrono::steady_clock::now() - watch_written_ >= kWatchInterval) write_watch_png();
     if (due.checkpoint) {
         update_run_figures();
         write_outputs();  // before the checkpoint: a checkpoint on disk has its summary
@@ -534,6 +543,13 @@ void Simulation::finish_run() {
     }
     if (scene_.contains("metrics")) metrics_ = evaluate_metrics(scene_["metrics"], *this, scene_dir_);
     if (out_dir_.empty()) return;
+    // the state a run ends in is a frame of its series, also when the
+    // interval does not divide the run (a stopped run resumes its series)
+    if (finished_ && vtk_.interval > 0 && (vtk_series_.empty() || vtk_series_.back().first < w.time))
+        write_vtk_snapshot();
+    if (finished_ && png_interval_ > 0 && last_png_time_ < w.time) write_png_snapshot();
+    if (finished_) redraw_png_series();
+    if (watch_) write_watch_png();
     flush_history();
     write_outputs();
 }
@@ -627,7 +643,7 @@ void Simulation::check_run_length() {
                                         short_number(dt) + " s: it would write every step; give at least " +
                                         short_number(dt) + " s");
     };
-    check_interval(vtk_interval_, "scene.output.vtk_interval");
+    check_interval(vtk_.interval, vtk_interval_path_);
     check_interval(png_interval_, "scene.output.png.interval");
     check_interval(checkpoint_every_, "--checkpoint-every");
     for (std::size_t i = next_command_; i < commands_.size(); ++i) {
@@ -672,10 +688,10 @@ void Simulation::run() {
     }
     remove_stale_temporaries();
     flush_history();  // a restart's rows replace those a killed run wrote after its checkpoint
-    if (vtk_interval_ > 0 && !out_dir_.empty() && w.step_count == 0 && !resumed_) {
+    if (vtk_.interval > 0 && !out_dir_.empty() && w.step_count == 0 && !resumed_) {
         w.prepare();
         write_vtk_snapshot();
-        next_vtk_time_ = vtk_interval_;
+        next_vtk_time_ = vtk_.interval;
     }
     if (png_interval_ > 0 && !out_dir_.empty() && w.step_count == 0 && !resumed_) {
         w.prepare();

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <unordered_map>
 
@@ -142,130 +143,232 @@ std::vector<double> snapshot_values(const World& w, const std::string& field, st
             for (const auto& n : snapshot_field_names(w)) known += (known.empty() ? "" : ", ") + n;
             throw InputError("field", "unknown field '" + field + "' to colour balls by; fields: " + known);
         }
-        unit = "";
+        unit = w.field_unit(f) == "1" ? "" : w.field_unit(f);  // "1": dimensionless
         v = const_cast<World&>(w).field(f);
     }
     return v;
 }
 
-void write_snapshot_png(const World& w, const SnapshotOptions& opt, const std::string& path) {
-    std::string unit;
-    const std::vector<double> value = snapshot_values(w, opt.field, unit);
-    const bool categorical = opt.field == "group";
-    double vmin = kInf, vmax = -kInf;
-    for (double v : value)
-        if (std::isfinite(v)) { vmin = std::min(vmin, v); vmax = std::max(vmax, v); }
-    if (!(vmax > vmin)) { vmin = std::isfinite(vmin) ? vmin : 0.0; vmax = vmin + 1.0; }
+std::size_t SnapshotFrame::bytes() const {
+    return sizeof(float) * (x.size() + y.size() + radius.size() + value.size() + walls.size() + bonds.size() + breaks.size()) +
+           sizeof(int) * group.size();
+}
 
-    const std::vector<double> view = opt.view.size() == 4 ? opt.view : snapshot_view(w);
-    const double x0 = view[0], y0 = view[1], x1 = view[2], y1 = view[3];
-    const int bar_w = 110, footer = 46, W = std::max(300, opt.width);
-    const double scale = double(W - bar_w) / (x1 - x0);  // px per metre
-    const int H = int(std::ceil((y1 - y0) * scale)) + footer;
-    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, std::max(H, 200));
-    cairo_t* cr = cairo_create(surface);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_paint(cr);
-    cairo_rectangle(cr, 0, 0, W - bar_w, H - footer);  // balls that left the view are cut, not drawn over the legend
-    cairo_clip(cr);
-    auto px = [&](double x) { return (x - x0) * scale; };
-    auto py = [&](double y) { return (y1 - y) * scale; };
+namespace {
 
-    // walls
-    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
-    cairo_set_line_width(cr, 2.0);
-    for (const Facet& f : w.walls.facets)
-        if (f.kind == FacetKind::segment) {
-            cairo_move_to(cr, px(f.a.x()), py(f.a.y()));
-            cairo_line_to(cr, px(f.b.x()), py(f.b.y()));
-            cairo_stroke(cr);
-        }
-    // balls, to scale
+bool listed(const std::vector<int>& groups, int g) { return std::find(groups.begin(), groups.end(), g) != groups.end(); }
+
+// Intact bonds as segments between centres; broken ones while the two balls
+// are still near each other (once the pieces fly apart a line would cross
+// the picture: the field's colour says enough).
+void capture_bonds(const World& w, SnapshotFrame& f) {
+    const Bodies& b = w.bodies;
+    auto segment = [](std::vector<float>& out, const Vec& p, const Vec& q) {
+        out.insert(out.end(), {float(p.x()), float(p.y()), float(q.x()), float(q.y())});
+    };
+    for (const auto& inst : w.instances()) {
+        const int slot = inst->desc->persist_slot;
+        if (slot < 0) continue;
+        const ContactSet& s = inst->balls;
+        for (std::size_t k = 0; k < s.size(); ++k)
+            if (s.history[k * inst->stride + slot] > 0) segment(f.bonds, b.position[s.end1[k]], b.position[s.end2[k]]);
+    }
+    std::unordered_map<BodyId, std::size_t> index;
+    for (std::size_t i = 0; i < b.size(); ++i) index[b.id[i]] = i;
+    for (const BondBreak& br : w.bond_breaks) {
+        if (!index.count(br.id1) || !index.count(br.id2)) continue;
+        const std::size_t i = index[br.id1], j = index[br.id2];
+        if ((b.position[i] - b.position[j]).norm() <= 1.5 * (b.radius[i] + b.radius[j]))
+            segment(f.breaks, b.position[i], b.position[j]);
+    }
+}
+
+} // namespace
+
+SnapshotFrame capture_snapshot(const World& w, const SnapshotOptions& opt) {
+    SnapshotFrame f;
+    f.time = w.time;
+    f.step = w.step_count;
+    f.field = opt.field;
+    f.group_names = w.group_names();
+    const std::vector<double> value = snapshot_values(w, opt.field, f.unit);
     const Bodies& b = w.bodies;
     for (std::size_t i = 0; i < b.size(); ++i) {
-        const Rgb c = categorical ? category(int(value[i])) : colour_map((value[i] - vmin) / (vmax - vmin));
-        cairo_arc(cr, px(b.position[i].x()), py(b.position[i].y()), std::max(0.5, b.radius[i] * scale), 0, 2 * M_PI);
-        cairo_set_source_rgb(cr, c.r, c.g, c.b);
-        cairo_fill(cr);
+        if (listed(opt.hidden_groups, b.group[i])) continue;
+        f.x.push_back(float(b.position[i].x()));
+        f.y.push_back(float(b.position[i].y()));
+        f.radius.push_back(float(b.radius[i]));
+        f.value.push_back(float(value[i]));
+        f.group.push_back(b.group[i]);
     }
-    // bonds: intact as thin grey lines between centres, broken as red ones
-    if (opt.bonds) {
-        cairo_set_line_width(cr, std::max(0.6, 0.15 * scale * (b.size() ? b.radius[0] : 0.0)));
-        cairo_set_source_rgba(cr, 0.2, 0.2, 0.2, 0.6);
-        for (const auto& inst : w.instances()) {
-            const int slot = inst->desc->persist_slot;
-            if (slot < 0) continue;
-            const ContactSet& s = inst->balls;
-            for (std::size_t k = 0; k < s.size(); ++k)
-                if (s.history[k * inst->stride + slot] > 0) {
-                    cairo_move_to(cr, px(b.position[s.end1[k]].x()), py(b.position[s.end1[k]].y()));
-                    cairo_line_to(cr, px(b.position[s.end2[k]].x()), py(b.position[s.end2[k]].y()));
-                }
-            cairo_stroke(cr);
+    for (const Facet& fc : w.walls.facets)
+        if (fc.kind == FacetKind::segment) f.walls.insert(f.walls.end(), {float(fc.a.x()), float(fc.a.y()), float(fc.b.x()), float(fc.b.y())});
+    if (opt.bonds) capture_bonds(w, f);
+    return f;
+}
+
+std::pair<double, double> value_range(const SnapshotFrame& f, const SnapshotOptions& opt) {
+    double lo = kInf, hi = -kInf;
+    for (std::size_t i = 0; i < f.value.size(); ++i)
+        if (std::isfinite(f.value[i]) && !listed(opt.greyed_groups, f.group[i])) {
+            lo = std::min(lo, double(f.value[i]));
+            hi = std::max(hi, double(f.value[i]));
         }
-        std::unordered_map<BodyId, std::size_t> index;
-        for (std::size_t i = 0; i < b.size(); ++i) index[b.id[i]] = i;
-        cairo_set_source_rgb(cr, 0.85, 0.0, 0.0);
-        cairo_set_line_width(cr, 2.5);
-        for (const BondBreak& br : w.bond_breaks) {
-            if (!index.count(br.id1) || !index.count(br.id2)) continue;
-            const std::size_t i = index[br.id1], j = index[br.id2];
-            const Vec& p = b.position[i];
-            const Vec& q = b.position[j];
-            // once the pieces have flown apart a line would cross the picture: the colour says enough
-            if ((p - q).norm() > 1.5 * (b.radius[i] + b.radius[j])) continue;
-            cairo_move_to(cr, px(p.x()), py(p.y()));
-            cairo_line_to(cr, px(q.x()), py(q.y()));
-            cairo_stroke(cr);
-            const double cx = px(0.5 * (p.x() + q.x())), cy = py(0.5 * (p.y() + q.y())), s = 4;  // a cross at the break
-            cairo_move_to(cr, cx - s, cy - s); cairo_line_to(cr, cx + s, cy + s);
-            cairo_move_to(cr, cx - s, cy + s); cairo_line_to(cr, cx + s, cy - s);
-            cairo_stroke(cr);
-        }
-    }
-    cairo_reset_clip(cr);
-    // colour bar (or group legend) on the right
-    const double bx = W - bar_w + 20, by = 30, bh = std::max(100.0, std::min(300.0, H - footer - 60.0));
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_rectangle(cr, W - bar_w, 0, bar_w, H);
-    cairo_fill(cr);
+    if (lo > hi) return {std::nan(""), std::nan("")};
+    return {lo, hi};
+}
+
+namespace {
+
+constexpr int kBarWidth = 120, kFooter = 46, kAxisLeft = 64, kAxisBottom = 40, kAxisPad = 12;
+
+// Ticks at the multiples of a 1-2-5 step inside [lo, hi].
+std::vector<double> ticks_within(double lo, double hi, int target) {
+    const double step = nice_step(hi - lo, target);
+    std::vector<double> t;
+    for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step)
+        t.push_back(std::fabs(v) < 1e-9 * step ? 0.0 : v);
+    return t;
+}
+
+void draw_scene_axes(cairo_t* cr, const SnapshotLayout& L, const std::vector<double>& view) {
+    const double x0 = view[0], y0 = view[1], x1 = view[2], y1 = view[3];
+    const double px0 = L.left, px1 = L.left + (x1 - x0) * L.scale, py0 = L.top + (y1 - y0) * L.scale;
     cairo_set_source_rgb(cr, 0, 0, 0);
-    text(cr, bx, by - 10, opt.field + (unit.empty() ? "" : " [" + unit + "]"), 12);
-    if (categorical) {
-        for (std::size_t g = 0; g < w.group_names().size(); ++g) {
+    cairo_set_line_width(cr, 1);
+    cairo_rectangle(cr, px0, L.top, px1 - px0, py0 - L.top);
+    cairo_stroke(cr);
+    const int target = std::max(3, int((px1 - px0) / 110));
+    for (double x : ticks_within(x0, x1, target)) {
+        const double p = L.left + (x - x0) * L.scale;
+        cairo_move_to(cr, p, py0); cairo_line_to(cr, p, py0 + 5); cairo_stroke(cr);
+        text(cr, p, py0 + 18, number(x, "%g"), 11, 0.5);
+    }
+    for (double y : ticks_within(y0, y1, std::max(3, int((py0 - L.top) / 80)))) {
+        const double p = L.top + (y1 - y) * L.scale;
+        cairo_move_to(cr, px0 - 5, p); cairo_line_to(cr, px0, p); cairo_stroke(cr);
+        text(cr, px0 - 8, p + 4, number(y, "%g"), 11, 1.0);
+    }
+    text(cr, 0.5 * (px0 + px1), py0 + 34, "x [m]", 12, 0.5);
+    cairo_save(cr);
+    cairo_translate(cr, 14, 0.5 * (L.top + py0));
+    cairo_rotate(cr, -M_PI / 2);
+    text(cr, 0, 0, "y [m]", 12, 0.5);
+    cairo_restore(cr);
+}
+
+void draw_colour_bar(cairo_t* cr, const SnapshotFrame& f, const SnapshotLayout& L, double vmin, double vmax) {
+    const double bx = L.width - kBarWidth + 20, by = 30, bh = std::max(100.0, std::min(300.0, L.height - kFooter - 60.0));
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    text(cr, bx - 8, by - 12, f.field + (f.unit.empty() ? "" : " [" + f.unit + "]"), 12);
+    if (f.field == "group") {
+        for (std::size_t g = 0; g < f.group_names.size(); ++g) {
             const Rgb c = category(int(g));
             cairo_set_source_rgb(cr, c.r, c.g, c.b);
             cairo_rectangle(cr, bx, by + 20.0 * g, 14, 14);
             cairo_fill(cr);
             cairo_set_source_rgb(cr, 0, 0, 0);
-            text(cr, bx + 20, by + 20.0 * g + 12, w.group_names()[g], 12);
+            text(cr, bx + 20, by + 20.0 * g + 12, f.group_names[g], 12);
         }
-    } else {
-        for (int k = 0; k < int(bh); ++k) {
-            const Rgb c = colour_map(1.0 - k / bh);
-            cairo_set_source_rgb(cr, c.r, c.g, c.b);
-            cairo_rectangle(cr, bx, by + k, 18, 1.2);
-            cairo_fill(cr);
-        }
-        cairo_set_source_rgb(cr, 0, 0, 0);
-        for (int k = 0; k <= 4; ++k)
-            text(cr, bx + 24, by + bh * (1 - k / 4.0) + 4, number(vmin + (vmax - vmin) * k / 4.0), 11);
+        return;
     }
-    // footer: time stamp and scale bar
-    const double fy = H - 16;
-    text(cr, 10, fy, "t = " + number(w.time, "%.5g") + " s   step " + std::to_string(w.step_count) + "   " +
-                         std::to_string(b.size()) + " balls", 14);
-    const double bar_m = nice_step((x1 - x0), 5);
-    const double sx1 = W - bar_w - 20, sx0 = sx1 - bar_m * scale;
+    for (int k = 0; k < int(bh); ++k) {
+        const Rgb c = colour_map(1.0 - k / bh);
+        cairo_set_source_rgb(cr, c.r, c.g, c.b);
+        cairo_rectangle(cr, bx, by + k, 18, 1.2);
+        cairo_fill(cr);
+    }
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 1);
+    for (double v : ticks_within(vmin, vmax, 5)) {
+        const double y = by + bh * (1 - (v - vmin) / (vmax - vmin));
+        cairo_move_to(cr, bx + 18, y); cairo_line_to(cr, bx + 22, y); cairo_stroke(cr);
+        text(cr, bx + 25, y + 4, number(v, "%g"), 11);
+    }
+}
+
+void draw_footer(cairo_t* cr, const SnapshotFrame& f, const SnapshotLayout& L, const std::vector<double>& view) {
+    const double fy = L.height - 16;
+    text(cr, 10, fy, "t = " + number(f.time, "%.5g") + " s   step " + std::to_string(f.step) + "   " +
+                         std::to_string(f.x.size()) + " balls", 14);
+    const double bar_m = nice_step(view[2] - view[0], 5);
+    const double sx1 = L.width - kBarWidth - 20, sx0 = sx1 - bar_m * L.scale;
     cairo_set_line_width(cr, 3);
     cairo_move_to(cr, sx0, fy - 4);
     cairo_line_to(cr, sx1, fy - 4);
     cairo_stroke(cr);
     text(cr, 0.5 * (sx0 + sx1), fy - 10, length_text(bar_m), 12, 0.5);
+}
 
+void draw_segments(cairo_t* cr, const std::vector<float>& seg, const std::function<double(double)>& px,
+                   const std::function<double(double)>& py) {
+    for (std::size_t k = 0; k + 3 < seg.size(); k += 4) {
+        cairo_move_to(cr, px(seg[k]), py(seg[k + 1]));
+        cairo_line_to(cr, px(seg[k + 2]), py(seg[k + 3]));
+    }
+    cairo_stroke(cr);
+}
+
+} // namespace
+
+SnapshotLayout snapshot_layout(const SnapshotOptions& opt, const std::vector<double>& view) {
+    const int W = std::max(300, opt.width);
+    const double left = opt.axes ? kAxisLeft : 0, top = opt.axes ? kAxisPad : 0;
+    const double scene_px = W - kBarWidth - left - (opt.axes ? kAxisPad : 0);
+    const double scale = scene_px / (view[2] - view[0]);  // px per metre
+    const int H = int(std::ceil(top + (view[3] - view[1]) * scale)) + (opt.axes ? kAxisBottom : 0) + kFooter;
+    return {left, top, scale, W, std::max(H, 200)};
+}
+
+void draw_snapshot_png(const SnapshotFrame& f, const SnapshotOptions& opt, const std::vector<double>& view,
+                       double vmin, double vmax, const std::string& path) {
+    if (!(vmax > vmin)) { vmin = std::isfinite(vmin) ? vmin : 0.0; vmax = vmin + 1.0; }
+    const SnapshotLayout L = snapshot_layout(opt, view);
+    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, L.width, L.height);
+    cairo_t* cr = cairo_create(surface);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    const std::function<double(double)> px = [&](double x) { return L.left + (x - view[0]) * L.scale; };
+    const std::function<double(double)> py = [&](double y) { return L.top + (view[3] - y) * L.scale; };
+    cairo_rectangle(cr, L.left, L.top, (view[2] - view[0]) * L.scale, (view[3] - view[1]) * L.scale);
+    cairo_clip(cr);  // balls that left the view are cut, not drawn over the legend
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    cairo_set_line_width(cr, 2.0);
+    draw_segments(cr, f.walls, px, py);
+    const bool categorical = f.field == "group";
+    for (std::size_t i = 0; i < f.x.size(); ++i) {
+        const Rgb c = listed(opt.greyed_groups, f.group[i]) ? Rgb{0.82, 0.82, 0.82}
+                      : categorical                         ? category(int(f.value[i]))
+                                                            : colour_map((f.value[i] - vmin) / (vmax - vmin));
+        cairo_arc(cr, px(f.x[i]), py(f.y[i]), std::max(0.5, f.radius[i] * L.scale), 0, 2 * M_PI);
+        cairo_set_source_rgb(cr, c.r, c.g, c.b);
+        cairo_fill(cr);
+    }
+    cairo_set_line_width(cr, std::max(0.6, 0.15 * L.scale * (f.radius.empty() ? 0.0 : f.radius[0])));
+    cairo_set_source_rgba(cr, 0.2, 0.2, 0.2, 0.6);
+    draw_segments(cr, f.bonds, px, py);
+    cairo_set_source_rgb(cr, 0.85, 0.0, 0.0);
+    cairo_set_line_width(cr, 2.5);
+    draw_segments(cr, f.breaks, px, py);
+    for (std::size_t k = 0; k + 3 < f.breaks.size(); k += 4) {  // a cross at each break
+        const double cx = px(0.5 * (f.breaks[k] + f.breaks[k + 2])), cy = py(0.5 * (f.breaks[k + 1] + f.breaks[k + 3])), s = 4;
+        cairo_move_to(cr, cx - s, cy - s); cairo_line_to(cr, cx + s, cy + s);
+        cairo_move_to(cr, cx - s, cy + s); cairo_line_to(cr, cx + s, cy - s);
+    }
+    cairo_stroke(cr);
+    cairo_reset_clip(cr);
+    if (opt.axes) draw_scene_axes(cr, L, view);
+    draw_colour_bar(cr, f, L, vmin, vmax);
+    draw_footer(cr, f, L, view);
     cairo_destroy(cr);
     save(surface, path);
     cairo_surface_destroy(surface);
+}
+
+void write_snapshot_png(const World& w, const SnapshotOptions& opt, const std::string& path) {
+    const SnapshotFrame f = capture_snapshot(w, opt);
+    const auto [lo, hi] = opt.range_min < opt.range_max ? std::pair{opt.range_min, opt.range_max} : value_range(f, opt);
+    draw_snapshot_png(f, opt, opt.view.size() == 4 ? opt.view : snapshot_view(w), lo, hi, path);
 }
 
 namespace {

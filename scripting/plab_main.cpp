@@ -1,6 +1,7 @@
 // The `plab` command line: run scenes, list plug-ins, run validation cases.
 #include "new_model.hpp"
 #include "plot_command.hpp"
+#include "quantities.hpp"
 #include "simulation.hpp"
 #include "sweep.hpp"
 #include "validation.hpp"
@@ -33,14 +34,17 @@ namespace {
 const char* usage =
     "usage:\n"
     "  plab run SCENE.json [--set PATH=VALUE]... [--out DIR] [--quiet] [--checkpoint-every SECONDS]\n"
+    "           [--png INTERVAL[:FIELD]] [--vtk INTERVAL] [--watch]\n"
     "  plab check SCENE.json [--set PATH=VALUE]...\n"
-    "  plab restart CHECKPOINT.plab [--set PATH=VALUE]... [--out DIR] [--quiet] [--checkpoint-every SECONDS]\n"
+    "  plab restart CHECKPOINT.plab [--set PATH=VALUE]... [--out DIR] [--quiet] [--checkpoint-every SECONDS] [--watch]\n"
     "  plab sweep SCENE.json... [--vary PATH=v1,v2]... [--set PATH=VALUE]... [--jobs N] [--out DIR]\n"
     "             [--metric NAME] [--cost cpu_s|wall_s|steps|particle_steps|peak_rss_mb]\n"
     "  plab plugins [--describe MODEL]\n"
     "  plab validate CASE... | --list | --all [--quick] [--report DIR]\n"
     "  plab new-model NAME [DIR]   (an out-of-tree contact-model project)\n"
-    "  plab plot HISTORY.csv [--x COL] [--y A,B] [--ref REF.csv --ref-y COL [--band F]] [--out FILE.png]\n";
+    "  plab plot HISTORY.csv... [--label A,B] [--x COL] [--y A,B] [--ref REF.csv --ref-y COL [--band F]]\n"
+    "            [--title T] [--xlabel T] [--ylabel T] [--log x|y|xy] [--out FILE.png]\n"
+    "  plab quantities\n";
 
 // What the compiler was told: the vector extensions the kernel may use and
 // whether OpenMP is on (speed tables name them, bench/peers/README.md).
@@ -121,9 +125,34 @@ int run_and_report(Simulation& sim, bool quiet, const std::string& out) {
 struct RunOptions {
     std::string path, out;
     std::vector<std::string> sets;
-    bool quiet = false;
+    bool quiet = false, watch = false;
     double every = 0;
+    std::string png, vtk;  // --png INTERVAL[:FIELD], --vtk INTERVAL (run only)
 };
+
+// --png and --vtk as the scene keys they stand for, after the user's --set.
+void apply_output_flags(json& scene, const RunOptions& o) {
+    const auto interval = [](const std::string& flag, const std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end || !(v > 0) || !std::isfinite(v))
+            throw InputError(flag, "expected a positive simulated time in s, got '" + text + "'; valid range (0, inf)");
+        return v;
+    };
+    if (o.vtk.empty() && o.png.empty()) return;
+    json& out = scene["output"];
+    if (!out.is_object()) out = json::object();
+    if (!o.vtk.empty()) {
+        const double v = interval("--vtk", o.vtk);
+        if (out.contains("vtk") || !out.contains("vtk_interval")) out["vtk"]["interval"] = v;
+        else out["vtk_interval"] = v;
+    }
+    if (!o.png.empty()) {
+        const auto colon = o.png.find(':');
+        out["png"]["interval"] = interval("--png", o.png.substr(0, colon));
+        if (colon != std::string::npos) out["png"]["field"] = o.png.substr(colon + 1);
+    }
+}
 
 RunOptions parse_run_options(const std::vector<std::string>& args, const std::string& what) {
     RunOptions o;
@@ -133,7 +162,10 @@ RunOptions parse_run_options(const std::vector<std::string>& args, const std::st
         else if (a == "--out" && i + 1 < args.size()) o.out = args[++i];
         else if (a == "--checkpoint-every" && i + 1 < args.size()) o.every = checkpoint_interval(args[++i]);
         else if (a == "--quiet") o.quiet = true;
-        else if (a == "--set" || a == "--out" || a == "--checkpoint-every")
+        else if (a == "--watch") o.watch = true;
+        else if (a == "--png" && what == "scene" && i + 1 < args.size()) o.png = args[++i];
+        else if (a == "--vtk" && what == "scene" && i + 1 < args.size()) o.vtk = args[++i];
+        else if (a == "--set" || a == "--out" || a == "--checkpoint-every" || a == "--png" || a == "--vtk")
             throw InputError("command line", a + " needs a value after it\n" + usage);
         else if (a.rfind("--", 0) == 0) throw InputError("command line", "unknown option " + a + "\n" + usage);
         else if (o.path.empty()) o.path = a;
@@ -166,7 +198,8 @@ const char* help =
     "  plugins    list the plug-ins found, or describe one model's properties and units\n"
     "  validate   run the validation cases against their reference data (validation/)\n"
     "  new-model  make an out-of-tree project for a new contact model\n"
-    "  plot       draw history columns against time or a reference CSV as a PNG\n"
+    "  plot       draw history columns of one or more runs, and reference data, as a PNG\n"
+    "  quantities list the history quantities a scene can record, with their units\n"
     "  --version  the version and how this binary was built\n\n";
 
 int cmd_restart(const std::vector<std::string>& args) {
@@ -181,6 +214,7 @@ int cmd_restart(const std::vector<std::string>& args) {
     sim->set_quiet(o.quiet);
     if (!o.out.empty()) sim->set_output_dir(o.out);
     if (o.every > 0) sim->set_checkpoint_every(o.every);
+    if (o.watch) sim->set_watch();
     return run_and_report(*sim, o.quiet, sim->output_dir());
 }
 
@@ -190,6 +224,7 @@ int cmd_run(const std::vector<std::string>& args) {
     std::string out = o.out;
     json scene = read_scene_file(scene_path);
     for (const auto& s : o.sets) apply_override(scene, s);
+    apply_output_flags(scene, o);
     const std::string scene_dir = fs::absolute(scene_path).parent_path().string();
     Simulation sim(scene, scene_dir);
     sim.set_quiet(o.quiet);
@@ -198,6 +233,7 @@ int cmd_run(const std::vector<std::string>& args) {
         out = "plab_out/" + fs::path(scene_path).stem().string();
     if (!out.empty()) sim.set_output_dir(out);
     if (o.every > 0) sim.set_checkpoint_every(o.every);
+    if (o.watch) sim.set_watch();
     return run_and_report(sim, o.quiet, sim.output_dir());
 }
 
@@ -237,6 +273,16 @@ void describe(const PluginHost& host, const std::string& name) {
 
 int cmd_plugins(const std::vector<std::string>& args) {
     PluginHost host;
+    if (args.size() == 2 && args[0] == "--describe") {  // the one asked for, not the list
+        for (const auto& path : host.discover()) {
+            try {
+                host.load(path);
+            } catch (const PluginError&) {
+            }
+        }
+        describe(host, args[1]);
+        return 0;
+    }
     std::cout << "plug-in search path:\n";
     for (const auto& d : host.search_dirs()) std::cout << "  " << d << "\n";
     for (const auto& path : host.discover()) {
@@ -249,8 +295,18 @@ int cmd_plugins(const std::vector<std::string>& args) {
             std::cout << path << "\n  REFUSED: " << e.what() << "\n";
         }
     }
-    if (args.size() == 2 && args[0] == "--describe") describe(host, args[1]);
-    else if (!args.empty()) throw InputError("command line", std::string("plab plugins takes [--describe MODEL]\n") + usage);
+    if (!args.empty()) throw InputError("command line", std::string("plab plugins takes [--describe MODEL]\n") + usage);
+    return 0;
+}
+
+// The history quantities with their units; a scene's plug-ins add fields
+// for probe.<field> (plab plugins --describe PASS lists them).
+int cmd_quantities(const std::vector<std::string>& args) {
+    if (!args.empty()) throw InputError("command line", std::string("plab quantities takes no arguments\n") + usage);
+    std::cout << "history quantities (histories.record[k].quantity), unit, what:\n";
+    for (const QuantityInfo& q : history_quantities())
+        std::cout << "  " << q.name << "  [" << q.unit << "]\n      " << q.doc << "\n";
+    std::cout << "  or {\"name\": N, \"expression\": \"...\"} of earlier columns and the scene's variables\n";
     return 0;
 }
 
@@ -338,6 +394,7 @@ int main(int argc, char** argv) {
         if (cmd == "validate") return cmd_validate(args);
         if (cmd == "new-model") return cmd_new_model(args);
         if (cmd == "plot") return cmd_plot(args);
+        if (cmd == "quantities") return cmd_quantities(args);
         std::cerr << "unknown command '" << cmd << "'\n" << usage;
         return 2;
     } catch (const InputError& e) {

@@ -84,9 +84,9 @@ void Simulation::check_report(std::ostream& out) {
     if (!history_cols_.empty() && history_every_ > 0)
         out << "  history.csv: " << history_cols_.size() << " columns every " << history_every_ << " steps, about "
             << short_number(steps / double(history_every_) + 1) << " rows\n";
-    if (vtk_interval_ > 0) {
-        const double frames = time / vtk_interval_ + 1;
-        out << "  VTK every " << short_number(vtk_interval_) << " s: about " << short_number(frames) << " frames, "
+    if (vtk_.interval > 0) {
+        const double frames = time / vtk_.interval + 1;
+        out << "  VTK every " << short_number(vtk_.interval) << " s: about " << short_number(frames) << " frames, "
             << megabytes(frames * double(w.bodies.size()) * kVtkBytesPerBall) << " of balls\n";
     }
     if (png_interval_ > 0)

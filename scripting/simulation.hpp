@@ -6,6 +6,7 @@
 #include "json_reader.hpp"
 #include "pictures.hpp"
 #include "progress.hpp"
+#include "vtk_output.hpp"
 
 #include <plab_core/world.hpp>
 
@@ -34,6 +35,7 @@ json parse_scene_text(const std::string& text, const std::string& name);
 
 struct HistoryColumn {
     std::string name;
+    std::string unit;  // quantity_unit(); "" for an expression
     std::function<double(const World&)> sample;
     // set for a column computed from the row's earlier columns ("expression")
     std::function<double(const std::vector<double>& row)> derive;
@@ -100,6 +102,9 @@ public:
                                                std::shared_ptr<PluginHost> host = nullptr);
     // A checkpoint to checkpoint_path() every `seconds` of simulated time (0: never).
     void set_checkpoint_every(double seconds);
+    // --watch: OUT/watch.png, the state now, every few seconds of wall time
+    // (2D scenes), drawn as output.png draws its frames.
+    void set_watch();
     std::string checkpoint_path() const;
     const std::string& output_dir() const { return out_dir_; }
     // run() returned early because of SIGINT/SIGTERM (see stop_signal());
@@ -118,13 +123,33 @@ private:
     std::vector<std::vector<double>> history_rows_;
     long history_every_ = 0;
     bool history_at_end_ = false;  // histories.at_end: a row of the final state as well
-    double vtk_interval_ = 0, next_vtk_time_ = 0;
+    VtkOptions vtk_;  // output.vtk (or output.vtk_interval)
+    std::string vtk_interval_path_ = "scene.output.vtk.interval";  // for messages
+    double next_vtk_time_ = 0;
     int vtk_frames_ = 0;
     std::vector<std::pair<double, std::string>> vtk_series_;
     double png_interval_ = 0, next_png_time_ = 0;  // output.png: 2D snapshots
     int png_frames_ = 0;
     SnapshotOptions png_;
+    double last_png_time_ = -kInf;
+    // "range": "run": the run's range so far, and the frames to draw again in
+    // the final one (png_output.cpp), within a memory budget
+    bool png_run_range_ = true;
+    double png_range_[2] = {kInf, -kInf};
+    struct KeptFrame {
+        SnapshotFrame frame;
+        std::string path;
+        double drawn_lo, drawn_hi;
+    };
+    std::vector<KeptFrame> png_kept_;
+    std::size_t png_kept_bytes_ = 0;
+    static constexpr std::size_t kPngKeptBytes = std::size_t(1) << 30;
     void write_png_snapshot();
+    void redraw_png_series();
+    bool watch_ = false;
+    std::chrono::steady_clock::time_point watch_written_{};
+    static constexpr std::chrono::seconds kWatchInterval{3};
+    void write_watch_png();
     RunSummary run_;
     json metrics_;  // evaluated `metrics` of the scene (metrics.cpp)
     std::string timestep_note_;

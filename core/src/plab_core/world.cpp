@@ -87,10 +87,11 @@ int World::add_instance(const std::string& model, std::vector<double> props) {
         throw PluginError("contact model '" + model + "' reads " + std::to_string(d->fields_read_count) +
                           " body fields; plab passes at most " + std::to_string(ReadFields::kMax));
     for (uint32_t f = 0; f < d->fields_read_count; ++f)
-        inst->fields_read.push_back(register_field(d->fields_read[f].name, d->fields_read[f].default_value));
+        inst->fields_read.push_back(register_field(d->fields_read[f].name, d->fields_read[f].default_value, d->fields_read[f].unit));
     for (uint32_t f = 0; f < d->fields_accumulated_count; ++f)
         inst->fields_accumulated.push_back(
-            register_field(d->fields_accumulated[f].name, d->fields_accumulated[f].default_value));
+            register_field(d->fields_accumulated[f].name, d->fields_accumulated[f].default_value,
+                           d->fields_accumulated[f].unit));
     inst->walls.with_wall = true;
     for (ContactSet* s : {&inst->balls, &inst->walls}) {
         s->model_io = d->io;
@@ -116,11 +117,15 @@ int World::field_index(const std::string& name) const {
     return -1;
 }
 
-int World::register_field(const std::string& name, double default_value) {
+int World::register_field(const std::string& name, double default_value, const char* unit) {
     const int found = field_index(name);
-    if (found >= 0) return found;
+    if (found >= 0) {
+        if (field_units_[found].empty() && unit) field_units_[found] = unit;
+        return found;
+    }
     field_names_.push_back(name);
     field_defaults_.push_back(default_value);
+    field_units_.push_back(unit ? unit : "");
     fields_.emplace_back(bodies.size(), default_value);
     return int(fields_.size()) - 1;
 }
@@ -138,7 +143,7 @@ void World::add_pass(const std::string& name, std::vector<double> props) {
     p.state = d->create ? d->create(p.props.data()) : nullptr;
     if (d->create && !p.state) throw PluginError("pass '" + name + "' failed to create its state");
     for (uint32_t f = 0; f < d->field_count; ++f)
-        p.fields.push_back(register_field(d->fields[f].name, d->fields[f].default_value));
+        p.fields.push_back(register_field(d->fields[f].name, d->fields[f].default_value, d->fields[f].unit));
     // stable order: by phase, then stage, then order of addition
     auto it = passes_.begin();
     while (it != passes_.end() &&

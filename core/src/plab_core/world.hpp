@@ -196,7 +196,9 @@ public:
 
     // ---- per-body fields registered by plug-ins ----
     int field_index(const std::string& name) const;
-    int register_field(const std::string& name, double default_value);
+    // A field's unit is the first non-empty unit a plug-in declares for it.
+    int register_field(const std::string& name, double default_value, const char* unit = nullptr);
+    const std::string& field_unit(int index) const { return field_units_[index]; }
     std::vector<double>& field(int index) { return fields_[index]; }
     const std::vector<double>& field(int index) const { return fields_[index]; }
     const std::vector<std::string>& field_names() const { return field_names_; }
@@ -316,6 +318,7 @@ private:
     std::vector<std::string> field_names_;
     std::vector<std::vector<double>> fields_;
     std::vector<double> field_defaults_;
+    std::vector<std::string> field_units_;
     std::vector<std::uint8_t> field_at_default_;  // per field, this force pass (find_fields_at_default)
 
     // detection state
