@@ -6,6 +6,7 @@
 // does, takes the figures from the scene's own `metrics`, and judges them.
 #include "metrics.hpp"
 #include "validation.hpp"
+#include "variables.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,6 +30,7 @@ struct RunRecord {
     std::uint64_t steps = 0;
     double cpu = 0;
     std::string stopped;  // why the run stopped early, if it did
+    std::vector<std::pair<std::string, double>> variables;  // its scene's, resolved
 
     std::vector<double> column(const Node& where, const std::string& name) const {
         const auto it = std::find(columns.begin(), columns.end(), name);
@@ -78,6 +80,7 @@ RunRecord run_one(const fs::path& dir, const Node& run) {
     rec.steps = sim.world().step_count;
     for (const auto& c : sim.history_columns()) rec.columns.push_back(c.name);
     rec.rows = sim.history_rows();
+    rec.variables = scene_variables(sim.scene());
     const json summary = sim.summary();
     if (summary.contains("metrics")) rec.metrics = summary["metrics"];
     return rec;
@@ -181,21 +184,97 @@ std::string run_line(const RunRecord& r) {
     return s + "\n";
 }
 
+// Every k-th row, so that a plot holds about 400 points of a run.
+std::vector<std::size_t> plotted_rows(std::size_t n) {
+    std::vector<std::size_t> rows;
+    for (std::size_t k = 0; k < n; k += std::max<std::size_t>(1, n / 400)) rows.push_back(k);
+    return rows;
+}
+
+// The analytical solution of a run as a curve: "expression" of the run's
+// history columns and its scene's variables, at the run's samples.
+Curve analytical_curve(const Node& a, const RunRecord& r, const std::string& x, bool several) {
+    a.allow_keys({"expression", "label"});
+    const Expression f(a.at("expression").string(), r.columns, r.variables, a.at("expression").path());
+    const std::vector<double> xs = r.column(a, x);
+    const std::string label = a.string_or("label", "analytical");
+    Curve c{several ? r.label + ": " + label : label, {}, {}};
+    for (std::size_t k : plotted_rows(r.rows.size())) {
+        c.x.push_back(xs[k]);
+        c.y.push_back(f(r.rows[k]));
+    }
+    return c;
+}
+
+// A metric of each run against a variable of its scene ("x"), with the
+// metric's own reference (its analytical value) as a line.
+Plot metric_plot(const Node& p, const std::vector<const RunRecord*>& runs) {
+    const std::string x = p.at("x").string(), name = p.at("metric").string();
+    Plot plot{p.at("title").string(), p.string_or("x_label", x), p.string_or("y_label", name), {}};
+    std::vector<std::pair<double, std::pair<double, double>>> points;  // x, (value, reference)
+    for (const RunRecord* r : runs) {
+        const auto var = std::find_if(r->variables.begin(), r->variables.end(), [&](const auto& v) { return v.first == x; });
+        if (var == r->variables.end()) p.at("x").fail("run \"" + r->label + "\" has no variable \"" + x + "\"");
+        const json* m = r->metric(name);
+        if (!m) p.at("metric").fail("run \"" + r->label + "\" has no metric \"" + name + "\"");
+        const auto number = [&](const char* key) { return m->contains(key) && (*m)[key].is_number() ? (*m)[key].get<double>() : std::nan(""); };
+        points.push_back({var->second, {number("value"), number("reference")}});
+    }
+    std::sort(points.begin(), points.end());
+    Curve simulated{"plab", {}, {}, true}, reference{"analytical", {}, {}};
+    for (const auto& [vx, vr] : points) {
+        simulated.x.push_back(vx);
+        simulated.y.push_back(vr.first);
+        if (std::isfinite(vr.second)) {
+            reference.x.push_back(vx);
+            reference.y.push_back(vr.second);
+        }
+    }
+    if (!reference.x.empty()) plot.curves.push_back(std::move(reference));
+    plot.curves.push_back(std::move(simulated));
+    return plot;
+}
+
+// A case's plot: "y" (a column, or several) of its runs (all, or "runs"),
+// against a reference curve and/or each run's "analytical" solution.
 Plot make_plot(const Node& p, const std::vector<RunRecord>& runs, const fs::path& dir) {
-    p.allow_keys({"title", "x", "y", "x_label", "y_label", "runs", "reference"});
-    Plot plot{p.at("title").string(), p.string_or("x_label", p.at("x").string()), p.string_or("y_label", p.at("y").string()), {}};
+    p.allow_keys({"title", "x", "y", "metric", "x_label", "y_label", "runs", "reference", "analytical", "log"});
+    std::vector<const RunRecord*> chosen;
     for (const RunRecord& r : runs) {
         if (p.has("runs")) {
             const auto& names = p.at("runs").value();
             if (std::find(names.begin(), names.end(), json(r.label)) == names.end()) continue;
         }
-        const std::vector<double> x = r.column(p, p.at("x").string()), y = r.column(p, p.at("y").string());
-        Curve c{r.label, {}, {}};
-        for (std::size_t k = 0; k < x.size(); k += std::max<std::size_t>(1, x.size() / 400)) {
-            c.x.push_back(x[k]);
-            c.y.push_back(y[k]);
+        chosen.push_back(&r);
+    }
+    if (p.has("metric")) {
+        if (p.has("y") || p.has("reference") || p.has("analytical"))
+            p.at("metric").fail("a metric plot draws the metric and its own reference: no y, reference or analytical");
+        return metric_plot(p, chosen);
+    }
+    const std::string x = p.at("x").string();
+    std::vector<std::string> ys;
+    if (p.at("y").value().is_array())
+        for (std::size_t k = 0; k < p.at("y").size(); ++k) ys.push_back(p.at("y").at(k).string());
+    else ys.push_back(p.at("y").string());
+    Plot plot{p.at("title").string(), p.string_or("x_label", x), p.string_or("y_label", ys[0]), {}};
+    if (p.has("log")) {
+        const std::string log = p.at("log").choice({"x", "y", "xy"});
+        plot.log_x = log != "y";
+        plot.log_y = log != "x";
+    }
+    for (const RunRecord* r : chosen) {
+        const std::vector<double> xv = r->column(p, x);
+        for (const std::string& y : ys) {
+            const std::vector<double> yv = r->column(p, y);
+            Curve c{ys.size() > 1 ? r->label + ": " + y : r->label, {}, {}};
+            for (std::size_t k : plotted_rows(xv.size())) {
+                c.x.push_back(xv[k]);
+                c.y.push_back(yv[k]);
+            }
+            plot.curves.push_back(std::move(c));
         }
-        plot.curves.push_back(std::move(c));
+        if (p.has("analytical")) plot.curves.push_back(analytical_curve(p.at("analytical"), *r, x, chosen.size() > 1));
     }
     if (p.has("reference")) {
         const Node ref = p.at("reference");
@@ -203,9 +282,9 @@ Plot make_plot(const Node& p, const std::vector<RunRecord>& runs, const fs::path
         const std::string label = ref.string_or("label", ref.at("file").string());
         curve.erase("label");
         Curve c{label, {}, {}, true};
-        for (const auto& [x, y] : reference_curve(Node(curve, ref.path()), dir.string())) {
-            c.x.push_back(x);
-            c.y.push_back(y);
+        for (const auto& [rx, ry] : reference_curve(Node(curve, ref.path()), dir.string())) {
+            c.x.push_back(rx);
+            c.y.push_back(ry);
         }
         plot.curves.push_back(std::move(c));
     }
