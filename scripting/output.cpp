@@ -5,6 +5,8 @@
 // flush_history()).
 #include "simulation.hpp"
 
+#include "materials.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -249,6 +251,7 @@ json Simulation::summary() const {
                      {"limited_by", st.limited_by},
                      {"safety_factor", w.safety_factor}};
     if (!timestep_note_.empty()) s["timestep"]["note"] = timestep_note_;
+    if (!materials_->speed_of_sound_report().empty()) s["speed_of_sound"] = materials_->speed_of_sound_report();
     const Energies& e = w.energies;
     s["energies"] = {{"kinetic", e.kinetic}, {"strain", e.strain}, {"body_work", e.body},
                      {"boundary_work", e.boundary}, {"slip", e.slip}, {"dashpot", e.dashpot},
