@@ -321,6 +321,13 @@ CaseResult run_case(const fs::path& dir, const json& spec, bool quick) {
         result.details += buf;
     }
     if (!headline) root.at("checks").fail("no check applies to the " + std::string(quick ? "quick" : "full") + " version");
+    // A run that stopped early (unstable, out of cycles) fails its case even
+    // when its checks read a figure from before the stop (issue 37).
+    for (const RunRecord& r : runs)
+        if (!r.stopped.empty()) {
+            ++result.failed_checks;
+            result.details += "    check run \"" + r.label + "\" reached its end: FAIL (" + r.stopped + ")\n";
+        }
     if (root.has("plots"))
         for (std::size_t k = 0; k < root.at("plots").size(); ++k) result.plots.push_back(make_plot(root.at("plots").at(k), runs, dir));
     if (root.has("note")) result.details += "    " + root.at("note").string() + "\n";

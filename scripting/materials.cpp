@@ -14,7 +14,114 @@ namespace {
 // Two statements of one constant agree when they are the same number up to
 // the rounding of a printed decimal.
 bool same_value(double a, double b) { return std::fabs(a - b) <= 1e-9 * std::max(std::fabs(a), std::fabs(b)); }
+
+// c0 >= kMachFactor x the expected maximum speed: Mach 0.1, a density error
+// of about (v/c0)^2 = 1 % (Monaghan 1994, "Simulating free surface flows").
+constexpr double kMachFactor = 10.0;
+
+std::string number_text(double x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+}
+
+struct ExpectedSpeed {
+    double value;
+    std::string from;  // the rule and its numbers, for the run summary
+};
+
+// scene.materials.NAME.expected_max_speed: a number (m/s), or an object with
+// "speed" (a moving wall, a piston, an inflow, a settling body) and/or
+// "depth" D (the hydrostatic condition g D / c0^2 <= 1 %, which the long-wave
+// speed sqrt(g D) in place of the speed gives; Morris, Fox & Zhu 1997, the
+// body-force term of their c0 estimate), or "dam_break_height" H alone.
+ExpectedSpeed read_expected_speed(const Node& n, const Vec& gravity) {
+    if (n.value().is_number()) {
+        const double v = n.positive();
+        return {v, "given: " + number_text(v) + " m/s"};
+    }
+    if (!n.value().is_object() || n.size() == 0)
+        n.fail("expected a speed in m/s or an object with \"dam_break_height\" (m), \"speed\" (m/s) and/or "
+               "\"depth\" (m), got " + show(n.value()));
+    n.allow_keys({"speed", "depth", "dam_break_height"});
+    if (n.has("dam_break_height") && n.size() != 1)
+        n.fail("\"dam_break_height\" stands alone (it sets the depth too), got " + show(n.value()));
+    const double g = gravity.norm();
+    const auto needs_gravity = [&](const Node& k) {
+        if (!(g > 0)) k.fail("needs gravity: scene.gravity is zero");
+    };
+    if (n.has("dam_break_height")) {
+        const Node h = n.at("dam_break_height");
+        const double height = h.positive();
+        needs_gravity(h);
+        // Ritter's (1892) dry-bed dam break: the surge tip runs at 2 sqrt(g H),
+        // twice the free-fall speed sqrt(2 g H) of the column's top.
+        const double v = 2.0 * std::sqrt(g * height);
+        return {v, "dam_break_height H = " + number_text(height) + " m: 2 sqrt(g H) with g = " + number_text(g) +
+                       " m/s2 = " + number_text(v) + " m/s"};
+    }
+    double v = 0;
+    std::string from;
+    if (n.has("speed")) {
+        v = n.at("speed").positive();
+        from = "speed " + number_text(v) + " m/s";
+    }
+    if (n.has("depth")) {
+        const Node d = n.at("depth");
+        const double depth = d.positive();
+        needs_gravity(d);
+        const double wave = std::sqrt(g * depth);
+        from += (from.empty() ? "" : ", ") + std::string("depth D = ") + number_text(depth) + " m: sqrt(g D) = " +
+                number_text(wave) + " m/s";
+        v = std::max(v, wave);
+    }
+    return {v, from + (n.size() > 1 ? "; the larger, " + number_text(v) + " m/s" : "")};
+}
 } // namespace
+
+// speed_of_sound "auto" (kMachFactor x expected_max_speed) or a number no
+// lower than that; both keys end as numbers in mat.values.
+void Materials::resolve_speed_of_sound(const Node& m, const Vec& gravity, Material& mat) {
+    const bool has_expected = m.has("expected_max_speed");
+    ExpectedSpeed expected{0, ""};
+    if (has_expected) {
+        expected = read_expected_speed(m.at("expected_max_speed"), gravity);
+        mat.values["expected_max_speed"] = expected.value;
+        mat.used.push_back("expected_max_speed");  // read here; sph_eos takes it for its advice when declared
+    }
+    if (!m.has("speed_of_sound")) {
+        if (has_expected) m.at("expected_max_speed").fail("sets the speed of sound only with \"speed_of_sound\": \"auto\" (or a number >= " + number_text(kMachFactor * expected.value) + " m/s) in this material");
+        return;
+    }
+    const Node c = m.at("speed_of_sound");
+    const double floor_c0 = kMachFactor * expected.value;
+    json entry = {{"material", mat.name}};
+    double c0;
+    if (c.value().is_string()) {
+        if (c.value().get<std::string>() != "auto")
+            c.fail("expected a number (m/s) or \"auto\" (10 x expected_max_speed), got " + show(c.value()));
+        if (!has_expected)
+            c.fail("\"auto\" sets c0 = 10 x the material's expected_max_speed, which is not given: add "
+                   "\"expected_max_speed\": {\"dam_break_height\": H}, {\"speed\": v} or a speed in m/s");
+        c0 = floor_c0;
+        entry["rule"] = "auto: 10 x expected_max_speed";
+    } else {
+        c0 = c.positive();
+        if (has_expected && c0 < floor_c0 * (1 - 1e-9))
+            c.fail("value " + number_text(c0) + " is outside the valid range [" + number_text(floor_c0) +
+                   ", inf): 10 x expected_max_speed " + number_text(expected.value) + " m/s (" + expected.from +
+                   "); use \"auto\" or a larger value");
+        entry["rule"] = has_expected ? "given, checked >= 10 x expected_max_speed" : "given (no expected_max_speed to check it against)";
+    }
+    mat.values["speed_of_sound"] = c0;
+    entry["speed_of_sound"] = c0;
+    if (has_expected) {
+        entry["expected_max_speed"] = expected.value;
+        entry["from"] = expected.from;
+        entry["mach_factor"] = c0 / expected.value;
+    }
+    sound_report_.push_back(entry);
+}
 
 void Materials::load(const Node& n, const World& w) {
     n.expect_object();
@@ -22,7 +129,8 @@ void Materials::load(const Node& n, const World& w) {
     for (auto it = n.value().begin(); it != n.value().end(); ++it) {
         const Node m(*it, n.path() + "." + it.key());
         m.expect_object();
-        Material mat{it.key(), m.path(), &*it, {}, {}};
+        Material mat{it.key(), m.path(), *it, {}, {}};
+        mat.values.erase("groups");
         const Node groups = m.at("groups");
         groups.expect_array();
         for (std::size_t i = 0; i < groups.size(); ++i) {
@@ -40,8 +148,9 @@ void Materials::load(const Node& n, const World& w) {
             mat.groups.push_back(g);
         }
         for (auto v = it->begin(); v != it->end(); ++v)
-            if (v.key() != "groups" && !v->is_number())
+            if (v.key() != "groups" && v.key() != "speed_of_sound" && v.key() != "expected_max_speed" && !v->is_number())
                 Node(*v, m.path() + "." + v.key()).fail("expected a number (a property value), got " + show(*v));
+        resolve_speed_of_sound(m, w.gravity, mat);
         materials_.push_back(std::move(mat));
     }
 }
@@ -69,9 +178,9 @@ void Materials::fill(const Node& owner, const std::vector<int>& materials, const
         std::string source;  // path of the value filled so far
         for (int mi : materials) {
             Material& m = materials_[mi];
-            if (!m.values->contains(key)) continue;
+            if (!m.values.contains(key)) continue;
             if (std::find(m.used.begin(), m.used.end(), key) == m.used.end()) m.used.push_back(key);
-            const Node v((*m.values)[key], m.path + "." + key);
+            const Node v(m.values[key], m.path + "." + key);
             const double x = read_property(v, props[p]);
             std::ostringstream s;
             if (explicit_value && !same_value(x, (*given)[key].get<double>())) {
@@ -101,7 +210,7 @@ void Materials::fill(const Node& owner, const std::vector<int>& materials, const
 
 void Materials::check_all_used() const {
     for (const Material& m : materials_)
-        for (auto v = m.values->begin(); v != m.values->end(); ++v) {
+        for (auto v = m.values.begin(); v != m.values.end(); ++v) {
             if (v.key() == "groups" || std::find(m.used.begin(), m.used.end(), v.key()) != m.used.end()) continue;
             throw InputError(m.path + "." + v.key(),
                              "no contact model or pass using the material \"" + m.name + "\" has a property '" +

@@ -14,6 +14,14 @@
 // would otherwise be silently ignored). Properties named gravity_x/y/z are
 // filled from the scene's `gravity` the same way. This is a loader feature:
 // plug-ins see ordinary property values.
+//
+// The speed of sound of a weakly compressible fluid follows from the flow:
+// `"expected_max_speed"` is a number (m/s), `{"speed": v}` (a moving wall or
+// piston) or `{"dam_break_height": H}` (2 sqrt(|g| H), the surge tip of a
+// collapsing column, Ritter's shallow-water solution), and
+// `"speed_of_sound": "auto"` is 10 x it (Monaghan 1994: Mach 0.1 keeps the
+// density error near 1 %); a number below 10 x it is refused. What set c0 is
+// kept for the run summary and `plab check` (speed_of_sound_report()).
 #pragma once
 
 #include "json_reader.hpp"
@@ -43,16 +51,21 @@ public:
               uint32_t count, const Vec& gravity, std::vector<double>& values);
     // A key of a material that no user declared: an error naming its path.
     void check_all_used() const;
+    // Per material with a speed of sound: its value, the rule that set it
+    // and from what numbers (summary.json "speed_of_sound", plab check).
+    const json& speed_of_sound_report() const { return sound_report_; }
 
 private:
     struct Material {
         std::string name, path;
-        const json* values = nullptr;  // the material object (keys other than "groups")
+        json values;  // the material object, speed_of_sound and expected_max_speed as numbers
         std::vector<int> groups;
         std::vector<std::string> used;
     };
     std::vector<Material> materials_;
     std::vector<int> group_material_;
+    json sound_report_ = json::array();
+    void resolve_speed_of_sound(const Node& m, const Vec& gravity, Material& mat);
 };
 
 } // namespace plab

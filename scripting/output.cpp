@@ -6,6 +6,8 @@
 #include "simulation.hpp"
 #include "vtk_output.hpp"
 
+#include "materials.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -135,6 +137,7 @@ json Simulation::summary() const {
                      {"limited_by", st.limited_by},
                      {"safety_factor", w.safety_factor}};
     if (!timestep_note_.empty()) s["timestep"]["note"] = timestep_note_;
+    if (!materials_->speed_of_sound_report().empty()) s["speed_of_sound"] = materials_->speed_of_sound_report();
     const Energies& e = w.energies;
     s["energies"] = {{"kinetic", e.kinetic}, {"strain", e.strain}, {"body_work", e.body},
                      {"boundary_work", e.boundary}, {"slip", e.slip}, {"dashpot", e.dashpot},

@@ -346,6 +346,7 @@ int cmd_validate(const std::vector<std::string>& args) {
         } catch (const std::exception& e) {
             crash = e.what();
             r.error = kInf;
+            r.failed_checks = 1;  // a case that could not be judged has failed
         }
         const double cpu = double(std::clock() - t0) / CLOCKS_PER_SEC;
         std::printf("%-22s %-4s error %.4g (tolerance %.4g, %s)  cpu %.2f s\n", c->name.c_str(),

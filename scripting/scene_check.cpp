@@ -4,6 +4,8 @@
 // size on disk.
 #include "simulation.hpp"
 
+#include "materials.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -57,6 +59,18 @@ void print_contact_models(std::ostream& out, const World& w) {
         }
 }
 
+// Each material's speed of sound and what set it (materials.hpp).
+void print_speed_of_sound(std::ostream& out, const json& report) {
+    for (const json& e : report) {
+        out << "speed of sound: material " << e["material"].get<std::string>() << " c0 = "
+            << short_number(e["speed_of_sound"].get<double>()) << " m/s (" << e["rule"].get<std::string>();
+        if (e.contains("from"))
+            out << "; expected max speed " << e["from"].get<std::string>() << "; c0 = "
+                << short_number(e["mach_factor"].get<double>()) << " x it";
+        out << ")\n";
+    }
+}
+
 } // namespace
 
 void Simulation::check_report(std::ostream& out) {
@@ -64,6 +78,7 @@ void Simulation::check_report(std::ostream& out) {
     out << "dimension: " << w.dim << "D, gravity " << short_number(w.gravity.norm()) << " m/s2\n";
     print_groups(out, w);
     print_contact_models(out, w);
+    print_speed_of_sound(out, materials_->speed_of_sound_report());
     const auto [dt, set_by] = planned_timestep();
     out << "timestep: " << short_number(dt) << " s (" << set_by << ")\n";
     double steps = 0, time = 0;

@@ -62,7 +62,7 @@ struct SphEos {
     static constexpr uint32_t stage = 10;  // after sph_density_integration
     enum Prop : int {
         rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, density_band,
-        initial_density, prop_count
+        initial_density, expected_max_speed, prop_count
     };
     static constexpr plab_property_desc properties[] = {
         rest_density_desc, speed_of_sound_desc, gamma_desc,
@@ -77,6 +77,9 @@ struct SphEos {
         {"initial_density", "set the initial density", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
          "1: at the first run rho0 / the hydrostatic profile (a state for the continuity equation or the normalised "
          "summation); 0: keep what the density pass computed (plain summation density, a function of positions)"},
+        {"expected_max_speed", "largest flow speed the scene expects", "m/s", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
+         "from the material (2 sqrt(g H) for a dam break of height H); only for the advice when the density band "
+         "is left; 0: not stated"},
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
     enum Field : int { density, pressure };
@@ -85,7 +88,8 @@ struct SphEos {
     explicit SphEos(const double* p)
         : rho0_(p[rest_density]), gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
           boundary_(int(p[boundary_group])), g_(p[hydrostatic_gravity]), surface_(p[surface_level]),
-          c0_(p[speed_of_sound]), band_(p[density_band]), initialised_(int(p[initial_density]) == 0),
+          c0_(p[speed_of_sound]), band_(p[density_band]), expected_(p[expected_max_speed]),
+          initialised_(int(p[initial_density]) == 0),
           whole_gamma_(gamma_ == std::floor(gamma_) && gamma_ <= 64 ? unsigned(gamma_) : 0) {}
 
     void run(const plab_pass_view& v) {
@@ -142,21 +146,31 @@ private:
 
     // Names the ball, the density against the band and the likely cause:
     // a speed of sound too low for the flow (the Mach number sets the
-    // density error) or a step above the CFL limit.
+    // density error) or a step above the CFL limit. The advice is the rule
+    // the material applies: c0 >= 10 x the larger of the expected and the
+    // observed largest speed (Monaghan 1994).
     std::string band_message(const plab_pass_view& v, uint32_t i) const {
         double v_max = 0;
         for (uint32_t j = 0; j < v.body_count; ++j) {
             const double* u = v.velocity + 3 * j;
             v_max = std::max(v_max, std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
         }
-        char buf[480];
+        const double need = 10.0 * std::max(v_max, expected_);
+        char expected[200] = "";
+        if (expected_ > 0)
+            std::snprintf(expected, sizeof expected, "; the material's expected_max_speed is %.4g m/s (c0 = %.3g x it)%s",
+                          expected_, c0_ / expected_,
+                          v_max > expected_ ? ": the flow ran faster than expected, raise expected_max_speed" : "");
+        char buf[900];
         std::snprintf(buf, sizeof buf,
                       "sph_density: ball index %u has density %.6g kg/m3 = %.4g rho0, outside rho0 (1 +- %.3g) "
                       "(sph_eos density_band); likely cause: speed of sound c0 = %.4g m/s too low (the density error "
-                      "grows as (v/c0)^2 and g H/c0^2; now c0 = %.3g x the largest speed %.4g m/s; use c0 >= 10 x the "
-                      "largest speed expected), or a timestep above the CFL limit",
+                      "grows as (v/c0)^2 and g H/c0^2; now c0 = %.3g x the largest speed %.4g m/s%s; use c0 >= 10 x "
+                      "the largest speed = %.4g m/s: in the material \"speed_of_sound\": \"auto\" with "
+                      "\"expected_max_speed\" (a dam break of height H: {\"dam_break_height\": H}, 2 sqrt(g H); a "
+                      "moving wall: {\"speed\": v})), or a timestep above the CFL limit",
                       i, v.fields[density][i], v.fields[density][i] / rho0_, band_, c0_, v_max > 0 ? c0_ / v_max : inf,
-                      v_max);
+                      v_max, expected, need);
         return buf;
     }
 
@@ -176,7 +190,7 @@ private:
 
     double rho0_, gamma_, b_;
     int boundary_;
-    double g_, surface_, c0_, band_;
+    double g_, surface_, c0_, band_, expected_;
     bool initialised_;
     unsigned whole_gamma_;  // gamma when it is a whole number up to 64, else 0 (std::pow)
 };

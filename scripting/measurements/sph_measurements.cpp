@@ -105,6 +105,24 @@ Measurement min_clearance(const Node& with, const World& w) {
     };
 }
 
+// surface_height: the highest centre (y in 2D, z in 3D) of the group's balls
+// whose x lies in [x_min, x_max], m; NaN when none does. With a band one
+// spacing wide at the back wall it is the residual column height of a dam
+// break, the second quantity Martin & Moyce (1952) measured.
+Measurement surface_height(const Node& with, const World& w) {
+    with.allow_keys({"group", "x_min", "x_max"});
+    const int group = measured_group(with, w);
+    const double lo = with.at("x_min").number(), hi = with.at("x_max").number(lo, kInf, true, false);
+    return [group, lo, hi, up = w.dim - 1](const World& x) {
+        double top = -kInf;
+        for (std::size_t i = 0; i < x.bodies.size(); ++i) {
+            const Vec& p = x.bodies.position[i];
+            if (x.bodies.group[i] == group && p.x() >= lo && p.x() <= hi) top = std::max(top, p[up]);
+        }
+        return top > -kInf ? top : std::nan("");
+    };
+}
+
 } // namespace
 
 void register_sph_measurements(std::map<std::string, MeasurementInfo>& into) {
@@ -113,6 +131,8 @@ void register_sph_measurements(std::map<std::string, MeasurementInfo>& into) {
         "over the group's balls that started below exclude_above [-]", hydrostatic_pressure_error};
     into["max_displacement"] = {"largest distance of a ball of the group from its start [m]", max_displacement};
     into["min_clearance"] = {"smallest distance of a centre of the group inside the box [min, max] so far [m]", min_clearance};
+    into["surface_height"] = {"highest centre (y in 2D, z in 3D) of the group's balls with x_min <= x <= x_max; NaN if none [m]",
+                              surface_height};
 }
 
 } // namespace plab

@@ -90,3 +90,45 @@ TEST_CASE("material errors: unused key, out of range, unknown material or group,
     scene["materials"]["oil"] = {{"groups", {"fluid"}}, {"rest_density", 900}};
     CHECK_THROWS_WITH(plab::Simulation(scene), Contains(".groups[0]") && Contains("one material"));
 }
+
+// Issue 37: c0 from the flow. The rules, computed here from their formulas:
+// a dam break of height H, 2 sqrt(g H) (Ritter); a wall speed v with a depth
+// D, max(v, sqrt(g D)); "auto" is 10 x it, in the model and in both passes.
+TEST_CASE("speed_of_sound auto is 10 x the expected maximum speed of the material's rule", "[scene][sph]") {
+    struct Case { json expected; double speed; };
+    const Case cases[] = {{json::parse(R"({"dam_break_height": 0.2})"), 2 * std::sqrt(9.81 * 0.2)},
+                          {json::parse(R"({"speed": 0.1})"), 0.1},
+                          {json::parse(R"({"speed": 0.05, "depth": 0.06})"), std::sqrt(9.81 * 0.06)},
+                          {json::parse(R"({"speed": 3, "depth": 0.06})"), 3.0},
+                          {json(1.5), 1.5}};
+    for (const Case& c : cases) {
+        INFO(c.expected.dump());
+        json scene = two_ball_scene();
+        scene["materials"]["water"]["expected_max_speed"] = c.expected;
+        scene["materials"]["water"]["speed_of_sound"] = "auto";
+        plab::Simulation sim(scene);
+        sim.set_quiet(true);
+        CHECK(model_property(sim.world(), "speed_of_sound") == Approx(10 * c.speed).epsilon(1e-12));
+        // the passes got the same c0: the wall ball's density is the inverse Tait of that c0
+        sim.world().prepare();
+        const double p_w = 1000 * 9.81 * 0.01, B = 1000 * 100 * c.speed * c.speed / 7;
+        CHECK(sim.world().field(sim.world().field_index("sph_density"))[1] ==
+              Approx(1000 * std::pow(p_w / B + 1, 1.0 / 7)).epsilon(1e-12));
+        const json report = sim.summary()["speed_of_sound"];
+        REQUIRE(report.size() == 1);
+        CHECK(report[0]["speed_of_sound"].get<double>() == Approx(10 * c.speed).epsilon(1e-12));
+        CHECK(report[0]["rule"].get<std::string>() == "auto: 10 x expected_max_speed");
+        CHECK(report[0]["expected_max_speed"].get<double>() == Approx(c.speed).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("a speed of sound below 10 x the expected maximum speed is refused with its range", "[scene][sph]") {
+    json scene = two_ball_scene();
+    scene["materials"]["water"]["expected_max_speed"] = {{"dam_break_height", 0.2}};  // 10 x 2.80 = 28.0 m/s
+    CHECK_THROWS_WITH(plab::Simulation(scene), Contains("scene.materials.water.speed_of_sound") && Contains("value 15") &&
+                                                   Contains("[28.0143, inf)"));
+    scene["materials"]["water"]["speed_of_sound"] = 30;  // above the rule: used as given, reported as checked
+    plab::Simulation sim(scene);
+    CHECK(model_property(sim.world(), "speed_of_sound") == 30);
+    CHECK(sim.summary()["speed_of_sound"][0]["rule"].get<std::string>() == "given, checked >= 10 x expected_max_speed");
+}

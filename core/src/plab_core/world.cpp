@@ -181,7 +181,8 @@ void World::run_passes(std::uint32_t phase) {
         v.contact_end2_is_wall = pc_wall_.data();
         // the distances hold at these positions while the range test's lists do
         v.contact_distance = in_range_marked_ && pc_distance_.size() == pc_end1_.size() ? pc_distance_.data() : nullptr;
-        char diagnostic[512] = "";
+        char diagnostic[2048];  // room for a pass's advice (sph_eos: ~800 characters)
+        diagnostic[0] = '\0';
         v.diagnostic = diagnostic;
         v.diagnostic_capacity = sizeof diagnostic;
         const int rc = p.desc->run(p.state, p.props.data(), &v);
