@@ -45,7 +45,7 @@ double shear_strength(const Node& n, double nu, double sigma_ult, double rmul) {
 } // namespace
 
 json hexagonal_2d_calibration(const Node& n, int dim) {
-    n.allow_keys({"method", "E", "nu", "sigma_ult", "radius", "thickness", "pb_rmul", "tension", "tau_ult"});
+    n.allow_keys({"method", "E", "nu", "sigma_ult", "radius", "thickness", "pb_rmul", "tension", "tau_ult", "density"});
     if (dim != 2)
         n.at("method").fail("the hexagonal_2d calibration (thesis eqs. 36-46) is derived for 2D plane stress; "
                             "give kn, ks, pb_kn, pb_ks, pb_ten and pb_coh explicitly in a 3D scene");

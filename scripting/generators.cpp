@@ -111,19 +111,130 @@ void check_body_budget(const Node& n, double count, const World& w, const Genera
     n.fail(s.str());
 }
 
-// Regular packings filling a box with ball centres at least r from its faces:
-// 2D square / hexagonal (rows r√3 apart, odd rows shifted by r); 3D cubic /
-// hcp (layers 2r√(2/3) apart, ABAB stacking). Optional jitter for benchmarks.
-Box lattice(const Node& n, World& w, const GeneratorLimits& limits) {
-    n.allow_keys({"type", "group", "box", "radius", "density", "mass", "packing", "spacing", "fix", "local_damping",
+// The pitches of a regular packing of spacing a: along x, between rows (2D)
+// or in-layer rows (3D), between layers. 2D square / hexagonal (rows a√3/2
+// apart, odd rows shifted by a/2); 3D cubic / hcp (layers a√(2/3) apart,
+// ABAB stacking, B shifted by (a/2, a√3/6)). Each ball owns one Voronoi cell
+// of a·dy (2D) or a·dy·dz (3D): hexagonal 2√3 R², hcp 4√2 R³ at a = 2R.
+struct Packing {
+    std::string name;
+    double a = 0, dy = 0, dz = 0;
+    bool hex = false, hcp = false;
+    double shift_x(long j, long k) const { return (hex && (j % 2) ? a / 2 : 0.0) + (hcp && (k % 2) ? a / 2 : 0.0); }
+    double shift_y(long k) const { return hcp && (k % 2) ? a * std::sqrt(3.0) / 6.0 : 0.0; }
+};
+
+Packing read_packing(const Node& n, int dim, double r) {
+    Packing p;
+    p.a = n.number_or("spacing", 2 * r, 2 * r, kInf, false, true);  // centre spacing
+    p.name = n.has("packing") ? (dim == 2 ? n.at("packing").choice({"square", "hexagonal"}) : n.at("packing").choice({"cubic", "hcp"}))
+                              : (dim == 2 ? "hexagonal" : "cubic");
+    p.hex = p.name == "hexagonal" || p.name == "hcp";
+    p.hcp = p.name == "hcp";
+    p.dy = p.hex ? p.a * std::sqrt(3.0) / 2.0 : p.a;
+    p.dz = p.hcp ? p.a * std::sqrt(2.0 / 3.0) : p.a;
+    return p;
+}
+
+// Centres filling a box with every ball inside it (centres at least r from
+// its faces).
+std::vector<Vec> points_in_box(const Node& n, const Box& box, const Packing& pk, double r, int dim, const World& w,
+                               const GeneratorLimits& limits) {
+    const Vec lo = box.lo + Vec::Constant(r), hi = box.hi - Vec::Constant(r);
+    // counts tolerate round-off: a box sized for exactly n rows holds n rows
+    const double rows = std::floor((hi.y() - lo.y()) / pk.dy + 1e-6) + 1, columns = std::floor((hi.x() - lo.x()) / pk.a + 1e-6) + 1;
+    const double layers = dim == 3 ? std::floor((hi.z() - lo.z()) / pk.dz + 1e-6) + 1 : 1;
+    check_body_budget(n, std::max(0.0, rows) * std::max(0.0, columns) * std::max(0.0, layers), w, limits);
+    std::vector<Vec> points;
+    for (long k = 0; k < long(layers); ++k) {
+        const long ny = long(std::floor((hi.y() - lo.y() - pk.shift_y(k)) / pk.dy + 1e-6)) + 1;
+        for (long j = 0; j < ny; ++j)
+            for (long i = 0;; ++i) {
+                const Vec p(lo.x() + pk.shift_x(j, k) + i * pk.a, lo.y() + pk.shift_y(k) + j * pk.dy, dim == 3 ? lo.z() + k * pk.dz : 0.0);
+                if (p.x() > hi.x() + 1e-6 * pk.a) break;
+                points.push_back(p);
+            }
+    }
+    return points;
+}
+
+// How many cells of `pitch` make `size` (solid.size[c]): the nearest whole
+// number, refused when its cells miss the size by more than `tol` of it.
+long cell_count(const Node& size_node, double size, double pitch, double tol, const char* cells) {
+    const long count = std::max(1L, long(std::lround(size / pitch)));
+    if (std::fabs(count * pitch - size) <= tol * size) return count;
+    std::ostringstream s;
+    s << "value " << size << " m is " << size / pitch << " " << cells << " of " << pitch
+      << " m (the packing's pitch at this radius and spacing), not a whole number within solid.size_tolerance = " << tol
+      << " of it; the valid range is [" << count * pitch / (1 + tol) << ", " << count * pitch / (1 - tol) << "] m for " << count
+      << " " << cells;
+    const long other = size / pitch > double(count) ? count + 1 : count - 1;
+    if (other >= 1)
+        s << " or [" << other * pitch / (1 + tol) << ", " << other * pitch / (1 - tol) << "] m for " << other << " " << cells;
+    s << "; change the size, the radius, or solid.size_tolerance";
+    size_node.fail(s.str());
+}
+
+// Centres whose cells make up the solid [min, min + size]: whole numbers of
+// columns (pitch a), rows (dy) and layers (dz), every row with the same
+// count, so that the cells' union (the equivalent continuum) has the size
+// named (its cells from min to min + count pitch in each direction).
+std::vector<Vec> points_for_solid(const Node& s, const Packing& pk, int dim, const World& w, const GeneratorLimits& limits,
+                                  std::string& note) {
+    s.allow_keys({"min", "size", "size_tolerance"});
+    const Vec lo = s.at("min").vec(dim), size = s.at("size").vec(dim);
+    for (int c = 0; c < dim; ++c)
+        if (!(size[c] > 0)) s.at("size").at(c).fail("value " + show(s.at("size").at(c).value()) + " is not a size: the valid range is (0, inf) m");
+    const double tol = s.number_or("size_tolerance", 0.01, 0.0, 0.5, false, true);
+    const double pitch[3] = {pk.a, pk.dy, pk.dz};
+    const char* names[3] = {"columns", "rows", "layers"};
+    double estimate = 1;  // refused before a count can overflow
+    for (int c = 0; c < dim; ++c) estimate *= std::max(1.0, std::round(size[c] / pitch[c]));
+    check_body_budget(s.at("size"), estimate, w, limits);
+    long count[3] = {1, 1, 1};
+    for (int c = 0; c < dim; ++c) count[c] = cell_count(s.at("size").at(c), size[c], pitch[c], tol, names[c]);
+    // each cell centred half a pitch in, less the rows' and layers' mean
+    // shift (over their ABAB period), so that the cells fill [min, min + count pitch]
+    const Vec start(lo.x() + pk.a / 2 - (pk.hex ? pk.a / 4 : 0.0) - (pk.hcp ? pk.a / 4 : 0.0),
+                    lo.y() + pk.dy / 2 - (pk.hcp ? pk.a * std::sqrt(3.0) / 12 : 0.0), dim == 3 ? lo.z() + pk.dz / 2 : 0.0);
+    std::vector<Vec> points;
+    for (long k = 0; k < count[2]; ++k)
+        for (long j = 0; j < count[1]; ++j)
+            for (long i = 0; i < count[0]; ++i)
+                points.push_back(start + Vec(pk.shift_x(j, k) + i * pk.a, pk.shift_y(k) + j * pk.dy, dim == 3 ? k * pk.dz : 0.0));
+    std::ostringstream o;
+    o << count[0] << " x " << count[1] << (dim == 3 ? " x " + std::to_string(count[2]) : "") << " " << pk.name
+      << " cells, equivalent solid";
+    for (int c = 0; c < dim; ++c) o << (c ? " x " : " ") << count[c] * pitch[c];
+    o << " m (named";
+    for (int c = 0; c < dim; ++c) o << (c ? " x " : " ") << size[c];
+    o << " m)";
+    note = o.str();
+    return points;
+}
+
+// The balls' envelope: the region two generators must not share.
+Box envelope(const std::vector<Vec>& points, double r) {
+    Box b{Vec::Constant(kInf), Vec::Constant(-kInf)};
+    for (const Vec& p : points) {
+        b.lo = b.lo.cwiseMin(p - Vec::Constant(r));
+        b.hi = b.hi.cwiseMax(p + Vec::Constant(r));
+    }
+    return b;
+}
+
+// A regular packing filling a box (every ball inside it) or making up a
+// solid (its cells: `solid`, the size a calibrated structure stands for).
+// Optional jitter for benchmarks.
+Box lattice(const Node& n, World& w, const GeneratorLimits& limits, LatticeCells* cells) {
+    n.allow_keys({"type", "group", "box", "solid", "radius", "density", "mass", "packing", "spacing", "fix", "local_damping",
                   "viscous_damping", "jitter", "velocity"});
+    if (n.has("box") == n.has("solid"))
+        n.fail("a lattice needs exactly one of \"box\" (the region its balls fill) or \"solid\" ({\"min\", \"size\"}: the "
+               "solid its cells make up, as a calibrated structure is sized)");
     const Material m = read_material(n, w, false, true);
-    const Box box = read_box(n.at("box"), w.dim);
     const double r = m.radius_lo;
-    const double a = n.number_or("spacing", 2 * r, 2 * r, kInf, false, true);  // centre spacing
-    const std::string packing = n.has("packing") ? (w.dim == 2 ? n.at("packing").choice({"square", "hexagonal"})
-                                                                : n.at("packing").choice({"cubic", "hcp"}))
-                                                 : (w.dim == 2 ? "hexagonal" : "cubic");
+    const Packing pk = read_packing(n, w.dim, r);
     double jit_x = 0, jit_v = 0;
     std::uint64_t seed = 1;
     if (n.has("jitter")) {
@@ -133,44 +244,34 @@ Box lattice(const Node& n, World& w, const GeneratorLimits& limits) {
         jit_v = j.number_or("velocity", 0.0, 0.0, kInf, false, true);
         seed = std::uint64_t(j.has("seed") ? j.at("seed").integer(0, 1L << 40) : 1);
     }
-    Rng rng(seed);
-    const Vec v0 = n.vec_or("velocity", w.dim, Vec::Zero());
-    const bool hex = packing == "hexagonal" || packing == "hcp";
-    const double dy = hex ? a * std::sqrt(3.0) / 2.0 : a;   // row pitch (2D) / in-layer row pitch (3D)
-    const double dz = packing == "hcp" ? a * std::sqrt(2.0 / 3.0) : a;
-    const Vec lo = box.lo + Vec::Constant(r), hi = box.hi - Vec::Constant(r);
-    // counts tolerate round-off: a box sized for exactly n rows holds n rows
-    const double rows = std::floor((hi.y() - lo.y()) / dy + 1e-6) + 1, columns = std::floor((hi.x() - lo.x()) / a + 1e-6) + 1;
-    const double layers = w.dim == 3 ? std::floor((hi.z() - lo.z()) / dz + 1e-6) + 1 : 1;
-    check_body_budget(n, std::max(0.0, rows) * std::max(0.0, columns) * std::max(0.0, layers), w, limits);
-    const long nz = long(layers);
-    std::size_t count = 0;
-    for (long k = 0; k < nz; ++k) {
-        const double layer_x = packing == "hcp" && (k % 2) ? a / 2 : 0.0;
-        const double layer_y = packing == "hcp" && (k % 2) ? a * std::sqrt(3.0) / 6.0 : 0.0;
-        const long ny = long(std::floor((hi.y() - lo.y() - layer_y) / dy + 1e-6)) + 1;
-        for (long j = 0; j < ny; ++j) {
-            const double shift = hex && (j % 2) ? a / 2 : 0.0;
-            for (long i = 0;; ++i) {
-                Vec p(lo.x() + layer_x + shift + i * a, lo.y() + layer_y + j * dy, w.dim == 3 ? lo.z() + k * dz : 0.0);
-                if (p.x() > hi.x() + 1e-6 * a) break;
-                Vec v = v0;
-                for (int c = 0; c < w.dim; ++c) {
-                    if (jit_x > 0) p[c] += rng.uniform(-jit_x, jit_x);
-                    if (jit_v > 0) v[c] += rng.uniform(-jit_v, jit_v);
-                }
-                add(w, m, p, r, v);
-                ++count;
-            }
-        }
-    }
-    if (count == 0) {
+    std::string note;
+    const std::vector<Vec> points = n.has("box") ? points_in_box(n, read_box(n.at("box"), w.dim), pk, r, w.dim, w, limits)
+                                                 : points_for_solid(n.at("solid"), pk, w.dim, w, limits, note);
+    if (points.empty()) {
+        const Box box = read_box(n.at("box"), w.dim);
         std::ostringstream s;
         s << "box [" << box.lo.head(w.dim).transpose() << "] .. [" << box.hi.head(w.dim).transpose()
           << "] is too small for one ball of radius " << r << " (needs at least " << 2 * r << " in every direction)";
         n.at("box").fail(s.str());
     }
-    return box;
+    Rng rng(seed);
+    const Vec v0 = n.vec_or("velocity", w.dim, Vec::Zero());
+    for (Vec p : points) {
+        Vec v = v0;
+        for (int c = 0; c < w.dim; ++c) {
+            if (jit_x > 0) p[c] += rng.uniform(-jit_x, jit_x);
+            if (jit_v > 0) v[c] += rng.uniform(-jit_v, jit_v);
+        }
+        add(w, m, p, r, v);
+    }
+    if (cells) {
+        cells->group = m.group;
+        cells->packing = pk.name;
+        cells->radius = r;
+        cells->cell_volume = pk.a * pk.dy * (w.dim == 3 ? pk.dz : 1.0);
+        cells->note = note;
+    }
+    return n.has("box") ? read_box(n.at("box"), w.dim) : envelope(points, r);
 }
 
 // Balls cannot fill more than the box: refuse at once instead of spending
@@ -260,14 +361,14 @@ std::uint8_t read_fixity(const Node& n) {
     return f;
 }
 
-std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits) {
+std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits, LatticeCells* cells) {
     const std::string type = n.at("type").choice({"ball", "lattice", "random_fill"});
     if (type == "ball") {
         single_ball(n, w);
         return std::nullopt;
     }
     w.mark_dirty();
-    return type == "lattice" ? lattice(n, w, limits) : random_fill(n, w, limits);
+    return type == "lattice" ? lattice(n, w, limits, cells) : random_fill(n, w, limits);
 }
 
 double read_property(const Node& v, const plab_property_desc& d) {

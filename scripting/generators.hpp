@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace plab {
@@ -43,9 +44,23 @@ struct GeneratorLimits {
     long max_bodies = 10000000;  // ~10 GB at about 1 kB a ball
 };
 
+// The cells of a lattice's packing, for a calibration that gives the
+// lattice the material's density over them (scene_loader.cpp).
+struct LatticeCells {
+    int group = -1;
+    std::string packing;     // "square", "hexagonal", "cubic", "hcp"
+    double radius = 0;
+    double cell_volume = 0;  // per ball: its Voronoi cell, m^2 (2D, per unit thickness) or m^3
+    std::string note;        // a `solid` lattice: its counts and equivalent size, for the log
+    std::size_t first = 0, end = 0;  // its balls' indices [first, end) when made
+    std::string path;        // its bodies[i]
+    bool density_set = false;  // a calibration has given it the material's density over its cells
+};
+
 // Adds the balls of one `bodies[i]` entry; returns the region it filled
-// (lattice and random fill) so overlapping regions can be refused.
-std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits = {});
+// (lattice and random fill) so overlapping regions can be refused; a
+// lattice also describes its cells in `cells`.
+std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits = {}, LatticeCells* cells = nullptr);
 void generate_wall(const Node& n, World& w);
 // Refuses two facets in the same place (the walls at `walls`, by index).
 void check_coincident_facets(const Node& walls, const World& w);

@@ -2,7 +2,8 @@
 // run from its recorded histories and written to summary.json, so that
 // `plab sweep` can set error against cost (issue 7). Two kinds:
 //   analytical: a reduction of one history (final, change = final - first,
-//     max, min, time_of_max, mean, time_mean, max_abs) times `scale`,
+//     max, min, time_of_max, mean, time_mean, max_abs, period and frequency
+//     of a vibration) times `scale`,
 //     optionally over the samples whose time lies in [from, to] (a terminal
 //     velocity is the mean over a plateau), against an exact value:
 //     error = |value - exact| / |exact|;
@@ -33,6 +34,27 @@ namespace fs = std::filesystem;
 namespace plab {
 
 namespace {
+
+// A vibration's period: the times the history rises through its mean, each
+// interpolated between its two samples, first to last over the whole periods
+// between them. Rising crossings to rising crossings: a level off the true
+// centre (the mean of a part period) moves every one alike. NaN with fewer
+// than two.
+double period(const std::vector<double>& h, const std::vector<double>& t) {
+    double mean = 0;
+    for (double v : h) mean += v;
+    mean /= double(h.size());
+    double first = std::nan(""), last = first;
+    long crossings = 0;
+    for (std::size_t k = 1; k < h.size() && k < t.size(); ++k) {
+        const double a = h[k - 1] - mean, b = h[k] - mean;
+        if (!(a < 0 && b >= 0)) continue;
+        const double at = t[k - 1] + (t[k] - t[k - 1]) * a / (a - b);
+        if (crossings++ == 0) first = at;
+        last = at;
+    }
+    return crossings >= 2 ? (last - first) / double(crossings - 1) : std::nan("");
+}
 
 double reduce(const Node& n, const std::vector<double>& h, const std::vector<double>& t, const std::string& op) {
     if (h.empty()) n.fail("the history has no samples");
@@ -67,6 +89,7 @@ double reduce(const Node& n, const std::vector<double>& h, const std::vector<dou
         for (std::size_t k = n - window + 1; k <= n; ++k) last += h[k];
         return std::fabs(last - first) / double(window);
     }
+    if (op == "period" || op == "frequency") return op == "period" ? period(h, t) : 1.0 / period(h, t);
     if (op == "max_abs") {
         double m = 0;
         for (double v : h) m = std::max(m, std::fabs(v));
@@ -258,7 +281,7 @@ std::vector<double> named_history(const Node& where, const std::string& name, co
 double reduced(const Node& m, const Samples& s, const Simulation& sim) {
     const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "time_of_max", "mean",
                                                                     "time_mean", "max_abs", "time_below_zero", "drift",
-                                                                    "max_deviation"})
+                                                                    "max_deviation", "period", "frequency"})
                                            : "final";
     double value = (op == "time_mean" ? time_mean(s) : reduce(m, s.h, s.t, op)) * m.number_or("scale", 1.0);
     if (m.has("relative_to")) {

@@ -138,6 +138,7 @@ json Simulation::summary() const {
                      {"safety_factor", w.safety_factor}};
     if (!timestep_note_.empty()) s["timestep"]["note"] = timestep_note_;
     if (!materials_->speed_of_sound_report().empty()) s["speed_of_sound"] = materials_->speed_of_sound_report();
+    if (!structures_.empty()) s["structures"] = structures_;
     const Energies& e = w.energies;
     s["energies"] = {{"kinetic", e.kinetic}, {"strain", e.strain}, {"body_work", e.body},
                      {"boundary_work", e.boundary}, {"slip", e.slip}, {"dashpot", e.dashpot},

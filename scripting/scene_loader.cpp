@@ -125,7 +125,18 @@ void Simulation::load_bodies(const Node& n) {
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node g = n.at(i);
         const std::size_t before = world_->bodies.size();
-        const std::optional<Box> region = generate_bodies(g, *world_, limits_);
+        LatticeCells cells;
+        const std::optional<Box> region = generate_bodies(g, *world_, limits_, &cells);
+        if (cells.group >= 0) {
+            cells.first = before;
+            cells.end = world_->bodies.size();
+            cells.path = g.path();
+            if (!cells.note.empty()) {
+                spdlog::info("{} ({}): {}", g.path(), world_->group_names()[std::size_t(cells.group)], cells.note);
+                structures_.push_back({{"bodies", g.path()}, {"lattice", cells.note}});
+            }
+            lattices_.push_back(cells);
+        }
         if (region) {
             for (const auto& [other, where] : regions)
                 if (region->overlaps(other, world_->dim)) {
@@ -193,6 +204,7 @@ void Simulation::load_contact_models(const Node& n) {
                 cal.at("method").choice({"hexagonal_2d"});
                 json merged = rule.value();
                 json props = hexagonal_2d_calibration(cal, w.dim);
+                calibrate_density(cal, sides);
                 if (rule.has("properties")) props.update(rule.value()["properties"]);
                 merged["properties"] = props;
                 const Node merged_rule(merged, rule.path());
@@ -215,6 +227,76 @@ void Simulation::load_contact_models(const Node& n) {
         for (int a : sides[0])
             for (int b : sides[1]) w.assign(a, b, instance);
     }
+}
+
+// calibrate.density "section" (the default): the balls of the rule's
+// groups get the density that puts the material's mass in each ball's cell,
+// rho_ball = rho cell / ball. The calibrated continuum (eqs. 36-39) is the
+// union of the cells, so its mass per area is rho only so. A hexagonal
+// lattice of touching discs gives each disc the hexagon 2 sqrt(3) R^2
+// (a pitch 2R by a row pitch sqrt(3) R) around its pi R^2: a factor
+// 2 sqrt(3) / pi = 1.1027 (discs fill pi / (2 sqrt(3)) = 90.7 % of it). A 3D
+// calibration would take its packing's factor alike: hcp 4 sqrt(2) R^3 over
+// 4/3 pi R^3 = 3 sqrt(2) / pi = 1.3505, cubic 8 R^3 over it, 6 / pi = 1.9099.
+// (No 3D calibration exists yet: hexagonal_2d refuses a 3D scene.)
+// "ball" keeps the balls' density (a scene that sets the masses itself).
+void Simulation::calibrate_density(const Node& cal, const std::vector<int>* sides) {
+    if (cal.has("density") && cal.at("density").choice({"section", "ball"}) == "ball") return;
+    World& w = *world_;
+    // a disc's mass is per metre of thickness (bodies.hpp), the calibrated
+    // stiffnesses per `thickness` t (eqs. 36-37): the mass of t of the plate
+    const double thickness = cal.number_or("thickness", 1.0, 0.0, kInf, true, true);
+    for (int s = 0; s < 2; ++s)
+        for (int g : sides[s]) {
+            std::size_t in_lattices = 0, in_group = 0;
+            for (std::size_t i = 0; i < w.bodies.size(); ++i) in_group += w.bodies.group[i] == g;
+            for (LatticeCells& c : lattices_) {
+                if (c.group != g) continue;
+                in_lattices += c.end - c.first;
+                check_calibrated_lattice(cal, c, w.group_names()[std::size_t(g)]);
+                if (c.density_set) continue;  // another rule has (the same factor)
+                const double factor = c.cell_volume * thickness / Bodies::mass_of(w.dim, c.radius, 1.0);
+                for (std::size_t i = c.first; i < c.end; ++i) {
+                    w.bodies.mass[i] *= factor;
+                    w.bodies.inertia[i] *= factor;
+                }
+                c.density_set = true;
+                std::ostringstream m;
+                m << "ball density x " << factor << " (2 sqrt(3)/pi x thickness " << thickness
+                  << " m: the hexagonal cell 2 sqrt(3) R^2 over the disc pi R^2) for the " << c.end - c.first << " balls of "
+                  << c.path << ", so that their cells hold the material's density";
+                spdlog::info("{}: {}", cal.path(), m.str());
+                structures_.push_back({{"calibrate", cal.path()}, {"bodies", c.path}, {"density_factor", factor}, {"note", m.str()}});
+            }
+            if (in_lattices != in_group)
+                cal.fail("group \"" + w.group_names()[std::size_t(g)] + "\" has " + std::to_string(in_group - in_lattices) +
+                         " balls not made by a lattice generator; the calibration gives a lattice the material's density "
+                         "over its cells and has none for them: make the group of lattices only, or give calibrate.density "
+                         "= \"ball\" to keep the balls' density");
+        }
+    w.mark_dirty();
+}
+
+// The lattice a hexagonal_2d calibration describes: touching discs of its
+// radius in a hexagonal packing; one filling a box is warned about.
+void Simulation::check_calibrated_lattice(const Node& cal, const LatticeCells& c, const std::string& group) const {
+    const double hexagon = 2 * std::sqrt(3.0) * c.radius * c.radius;
+    if (c.packing != "hexagonal" || std::fabs(c.cell_volume - hexagon) > 1e-9 * hexagon)
+        cal.at("method").fail("the hexagonal_2d calibration is for a hexagonal lattice of touching discs; group \"" + group +
+                              "\" from " + c.path + " is a " + c.packing + " lattice" +
+                              (c.packing == "hexagonal" ? " with a spacing above 2 radius" : "") +
+                              "; make it a hexagonal one, or give calibrate.density = \"ball\" to keep its density");
+    const double radius = cal.at("radius").positive();
+    if (std::fabs(c.radius - radius) > 1e-9 * radius) {
+        std::ostringstream m;
+        m << "value " << radius << " m is not the radius " << c.radius << " m of group \"" << group << "\" (" << c.path
+          << "); the calibration's stiffness (eqs. 36-39) and its density are for that radius";
+        cal.at("radius").fail(m.str());
+    }
+    if (c.note.empty() && !c.density_set)
+        spdlog::warn("{}: {} fills a box; the section the calibration describes (the balls' cells) is not the box (a box "
+                     "2 n R wide holds rows of n and n - 1 balls: 2 (n - 1/2) R of cells); \"solid\" names that section's "
+                     "size (docs/bonded-structures.md)", cal.path(), c.path);
 }
 
 // The instability detector's limits (core/src/plab_core/stability.hpp);

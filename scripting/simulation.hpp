@@ -226,6 +226,10 @@ private:
     void check_domain(const std::string& where, std::size_t first) const;
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
     GeneratorLimits limits_;
+    std::vector<LatticeCells> lattices_;  // the scene's lattices, for calibrate.density
+    json structures_ = json::array();     // what the lattices and calibrations did (summary.json "structures")
+    void calibrate_density(const Node& cal, const std::vector<int>* sides);
+    void check_calibrated_lattice(const Node& cal, const LatticeCells& c, const std::string& group) const;
     std::string out_dir_from_ = "scene.output.dir";  // who named out_dir_, for messages
 };
 

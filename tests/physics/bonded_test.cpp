@@ -59,7 +59,8 @@ TEST_CASE("a bond sheared sideways breaks in shear when |Fs|/A reaches tau_c", "
 TEST_CASE("the hexagonal calibration refuses nu >= 1/3 and says why", "[bonds][scene]") {
     json scene = {{"dimension", 2},
                   {"plugins", {"linear_pbond"}},
-                  {"bodies", {{{"type", "ball"}, {"group", "g"}, {"position", {0, 0}}, {"radius", 0.001}, {"density", 2500}}}},
+                  {"bodies", {{{"type", "lattice"}, {"group", "g"}, {"solid", {{"min", {0, 0}}, {"size", {0.004, 2 * std::sqrt(3.0) * 0.001}}}},
+                               {"radius", 0.001}, {"density", 2500}}}},
                   {"contact_models", {{{"groups", {"g", "g"}}, {"model", "linear_pbond"},
                                        {"calibrate", {{"method", "hexagonal_2d"}, {"E", 1e9}, {"nu", 0.4},
                                                       {"sigma_ult", 1e6}, {"radius", 0.001}}}}}}};
