@@ -42,15 +42,6 @@ std::vector<std::string> wall_names(const World& w) {
     return names;
 }
 
-std::vector<std::string> split(const std::string& s, char sep) {
-    std::vector<std::string> out;
-    std::string cur;
-    for (char ch : s) {
-        if (ch == sep) { out.push_back(cur); cur.clear(); } else cur += ch;
-    }
-    out.push_back(cur);
-    return out;
-}
 
 // The named vector of every body; null for loads never applied (all zero).
 const Vec* body_vectors(const Bodies& b, const std::string& which) {
@@ -99,7 +90,7 @@ std::function<double(const World&)> field_probe(const Node& n, const World& w, c
 // One history column from its description.
 std::function<double(const World&)> quantity(const Node& n, const World& w) {
     const std::string q = n.at("quantity").string();
-    const auto parts = split(q, '.');
+    const auto parts = quantity_parts(q);
     const Node qn = n.at("quantity");
     const char* known =
         "time, step, dt, contacts, unbalanced_ratio, bonds.intact, bonds.broken, "

@@ -2,7 +2,6 @@
 
 #include "measurements/measurement.hpp"
 
-#include <sstream>
 
 namespace plab {
 
@@ -33,13 +32,6 @@ const std::vector<QuantityInfo>& builtin() {
     return q;
 }
 
-std::vector<std::string> split(const std::string& s) {
-    std::vector<std::string> parts;
-    std::stringstream ss(s);
-    for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
-    return parts;
-}
-
 // A measurement's doc ends in its unit, "[m]", unless its unit depends on a
 // parameter (then it names several).
 std::string measurement_unit(const std::string& doc) {
@@ -58,6 +50,15 @@ std::string vector_unit(const std::string& what) {
 
 } // namespace
 
+std::vector<std::string> quantity_parts(const std::string& quantity) {
+    std::vector<std::string> parts(1);
+    for (char ch : quantity) {
+        if (ch == '.') parts.emplace_back();
+        else parts.back() += ch;
+    }
+    return parts;
+}
+
 std::vector<QuantityInfo> history_quantities() {
     std::vector<QuantityInfo> all = builtin();
     for (const auto& [name, info] : measurements()) {
@@ -68,8 +69,7 @@ std::vector<QuantityInfo> history_quantities() {
 }
 
 std::string quantity_unit(const std::string& quantity, const World& w) {
-    const auto parts = split(quantity);
-    if (parts.empty()) return "";
+    const auto parts = quantity_parts(quantity);
     for (const QuantityInfo& q : builtin())
         if (q.name == quantity) return q.unit;
     if (parts[0] == "energy") return "J";

@@ -19,6 +19,10 @@ struct QuantityInfo {
 // Built-in quantities, then probe.<field> and every measure.<name>.
 std::vector<QuantityInfo> history_quantities();
 
+// The dotted parts of a quantity's name ("ball.velocity.x": ball, velocity,
+// x), empty ones kept ("ball." has two) so that a stray dot is refused.
+std::vector<std::string> quantity_parts(const std::string& quantity);
+
 // The unit of a recorded quantity ("" when it cannot be told: an
 // expression, a measurement whose unit depends on its parameters).
 std::string quantity_unit(const std::string& quantity, const World& w);
