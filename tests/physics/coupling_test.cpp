@@ -277,7 +277,7 @@ TEST_CASE("a structure floor in the SPH sums carries the weight of the water abo
 // PLAB_STUDY="dp:R:end:strength[:pressure_mode[:density_band]]", comma-separated; band 0: the scene's (5 %).
 TEST_CASE("gate fracture study", "[.gate_fracture_study]") {
     using namespace testing_support;
-    for (const auto& v : study_points("0.005:0.000833333:0.15:1.4e6", {0.005, 0.000833333, 0.15, 1.4e6, 2, 0})) {
+    for (const auto& v : study_points("0.005:0.000833333:0.15:1.15e6", {0.005, 0.000833333, 0.15, 1.15e6, 2, 0})) {
         std::vector<std::pair<std::string, json>> sets = {{"variables.dp", v[0]}, {"variables.R", v[1]}, {"variables.end_time", v[2]},
                                                           {"variables.strength", v[3]}, {"variables.pressure_mode", int(v[4])}};
         if (v[5] > 0) sets.emplace_back("variables.density_band", v[5]);
