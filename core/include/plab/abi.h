@@ -9,44 +9,7 @@
  * The host checks the version before calling init and refuses a version
  * outside [PLAB_ABI_OLDEST, PLAB_ABI_VERSION].
  *
- * Versions (each one only appends to structs the host fills, so a host
- * still runs every older plug-in; an older host refuses a newer plug-in):
- *   1  the first.
- *   2  plab_pass_view gains `diagnostic` / `diagnostic_capacity` and a pass
- *      may return PLAB_PASS_UNSTABLE: the state it checks is unphysical
- *      (e.g. SPH density far from rho0). The host stops the run with the
- *      pass's message and keeps the last good state. plab_registrar gains
- *      register_pass_state (checkpoints of pass state); a plug-in that calls
- *      it must be loaded by a host that provides it (ABI 2 or later).
- *   3  phase PLAB_PHASE_PRE_DRIFT (after the first half kick, before the
- *      drift) and the drift velocity correction: when passes register the
- *      per-body fields "drift_velocity_correction_x/_y/_z" (m/s), the drift
- *      moves each body by (v + correction) dt along its free translational
- *      degrees of freedom (SPH's XSPH, thesis eq. 18). A pass of that phase
- *      needs a host of ABI 3 or later; nothing else changed, so ABI 1 and 2
- *      plug-ins load unchanged.
- *   4  plab_contact_model_desc gains `flags` (PLAB_MODEL_*), appended; the
- *      host reads it only from a plug-in of ABI 4 or later and takes 0 for
- *      an older one. PLAB_MODEL_FORCE_AT_CENTRES lets the host skip the
- *      contact point kinematics, the moments and the stiffness and energy
- *      sums of an interaction between particle centres (SPH). A checkpoint
- *      written by an ABI 3 plab is refused by name (the host ABI is in it).
- *      A model with rates_stage is no longer called in the rates stage when
- *      no pass or model reads a field it accumulates (docs/sph.md).
- *   5  plab_contact_model_desc gains `io` (PLAB_IO_*), appended: a model
- *      may declare which of the optional inputs it reads and optional
- *      outputs it writes, and the host then computes and reads back only
- *      those. 0 (every older plug-in, and a model that declares nothing)
- *      means all of them, as before.
- *   6  plab_pass_view gains `contact_distance`, appended: the centre
- *      distance of each listed contact when the host has it at the current
- *      positions (the range test just computed it), else NULL; a pass that
- *      reads it computes the distance from the positions when it is NULL.
- *   7  plab_contact_batch gains `body_fields_at_default`, appended: which
- *      of the fields a model reads hold their declared default at every
- *      body, so that a model may skip gathering them (SPH: the no-slip
- *      wall velocity corrections in a scene without sph_wall_pressure).
- *      A checkpoint records the host ABI and is refused by another.
+ * What each version added, and how older plug-ins still load: docs/abi-changes.md.
  *
  * Contact models are called once per *batch* of contacts over host-owned
  * structure-of-arrays data (plab_contact_batch). A batch may hold only
