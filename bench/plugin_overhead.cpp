@@ -12,8 +12,8 @@
 // history for every repetition and must give bit-identical outputs (else the
 // comparison is void and the exit status is 1). Repetitions alternate the two
 // paths; the minimum time of each is compared (a loaded machine only adds).
-#include <plab_core/plugin_host.hpp>
-#include <plab_core/world.hpp>
+#include <host/plugin_host.hpp>
+#include <world/world.hpp>
 
 // The law compiled into this binary: the plug-in's own source. Its two
 // exported entry points are renamed so they cannot clash with the library's.

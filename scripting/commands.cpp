@@ -5,7 +5,7 @@
 #include "quantities.hpp"
 #include "simulation.hpp"
 #include "variables.hpp"
-#include "plab_core/error.hpp"
+#include "common/error.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -65,15 +65,15 @@ int body_index(const World& w, BodyId id) {
 // (1 - q)^4 (1 + 4q), q = d / radius; NaN while no ball is in reach. A wall
 // pressure sensor is a probe on the wall of the sensor's size.
 std::function<double(const World&)> field_probe(const Node& n, const World& w, const std::string& field) {
-    const int f = w.field_index(field);
-    if (f < 0) n.at("quantity").fail("no per-body field \"" + field + "\"" + listed("fields", w.field_names()));
+    const int f = w.fields.index(field);
+    if (f < 0) n.at("quantity").fail("no per-body field \"" + field + "\"" + listed("fields", w.fields.names()));
     const Vec point = n.at("point").vec(w.dim);
     const double radius = n.at("radius").positive();
     const std::string g = n.at("group").string();
     const int group = w.find_group(g);
     if (group < 0) n.at("group").fail("unknown group \"" + g + "\"" + listed("groups", w.group_names()));
     return [f, point, radius, group](const World& x) {
-        const std::vector<double>& values = x.field(f);
+        const std::vector<double>& values = x.fields.column(f);
         double sum = 0, weight = 0;
         for (std::size_t i = 0; i < x.bodies.size(); ++i) {
             if (x.bodies.group[i] != group) continue;

@@ -1,6 +1,6 @@
 #include "generators.hpp"
 
-#include <plab_core/plugin_host.hpp>
+#include <host/plugin_host.hpp>
 
 #include <cmath>
 #include <sstream>

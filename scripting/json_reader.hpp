@@ -3,8 +3,8 @@
 // object read through it rejects keys it does not know.
 #pragma once
 
-#include <plab_core/error.hpp>
-#include <plab_core/types.hpp>
+#include <common/error.hpp>
+#include <common/types.hpp>
 
 #include <nlohmann/json.hpp>
 

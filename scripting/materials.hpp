@@ -27,7 +27,7 @@
 #include "json_reader.hpp"
 
 #include <plab/abi.h>
-#include <plab_core/world.hpp>
+#include <world/world.hpp>
 
 #include <string>
 #include <vector>

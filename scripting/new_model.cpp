@@ -2,7 +2,7 @@
 // testing against an analytical result (contact time pi sqrt(m/k)).
 #include "new_model.hpp"
 
-#include <plab_core/error.hpp>
+#include <common/error.hpp>
 
 #include <cctype>
 #include <filesystem>

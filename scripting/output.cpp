@@ -129,7 +129,7 @@ json Simulation::summary() const {
     s["cpu_seconds"] = run_.cpu_seconds;
     s["particle_steps_per_second"] = run_.particle_steps_per_second;
     s["contacts"] = w.active_contacts();
-    s["neighbour_rebuilds"] = w.rebuilds;
+    s["neighbour_rebuilds"] = w.rebuilds();
     const StableStep st = const_cast<World&>(w).stable_timestep();
     s["timestep"] = {{"mode", w.fixed_dt > 0 ? "fixed" : "automatic"},
                      {"last_dt", w.last_dt},

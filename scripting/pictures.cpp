@@ -3,7 +3,7 @@
 // true size; text and legend are drawn in pixels on top.
 #include "pictures.hpp"
 
-#include <plab_core/error.hpp>
+#include <common/error.hpp>
 
 #include <cairo.h>
 
@@ -107,8 +107,8 @@ std::vector<double> snapshot_view(const World& w) {
 std::vector<std::string> snapshot_field_names(const World& w) {
     std::vector<std::string> names = {"velocity", "force", "group", "id", "stress_xx", "stress_yy", "stress_xy",
                                       "mean_stress", "broken_bonds"};
-    for (std::size_t f = 0; f < w.field_names().size(); ++f)
-        if (w.field_computed(int(f))) names.push_back(w.field_names()[f]);
+    for (std::size_t f = 0; f < w.fields.names().size(); ++f)
+        if (w.field_computed(int(f))) names.push_back(w.fields.names()[f]);
     return names;
 }
 
@@ -137,14 +137,14 @@ std::vector<double> snapshot_values(const World& w, const std::string& field, st
             for (BodyId id : {br.id1, br.id2})
                 if (index.count(id)) v[index[id]] += 1;
     } else {
-        const int f = w.field_index(field);
+        const int f = w.fields.index(field);
         if (f < 0) {
             std::string known;
             for (const auto& n : snapshot_field_names(w)) known += (known.empty() ? "" : ", ") + n;
             throw InputError("field", "unknown field '" + field + "' to colour balls by; fields: " + known);
         }
-        unit = w.field_unit(f) == "1" ? "" : w.field_unit(f);  // "1": dimensionless
-        v = const_cast<World&>(w).field(f);
+        unit = w.fields.unit(f) == "1" ? "" : w.fields.unit(f);  // "1": dimensionless
+        v = const_cast<World&>(w).fields.column(f);
     }
     return v;
 }

@@ -6,7 +6,7 @@
 
 #include "plot.hpp"
 
-#include <plab_core/world.hpp>
+#include <world/world.hpp>
 
 #include <cstdint>
 #include <string>

@@ -6,8 +6,8 @@
 #include "sweep.hpp"
 #include "validation.hpp"
 
-#include <plab_core/checkpoint.hpp>
-#include <plab_core/plugin_host.hpp>
+#include <io/checkpoint.hpp>
+#include <host/plugin_host.hpp>
 
 #include <spdlog/spdlog.h>
 

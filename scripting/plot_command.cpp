@@ -8,7 +8,7 @@
 
 #include "plot.hpp"
 
-#include <plab_core/error.hpp>
+#include <common/error.hpp>
 
 #include <nlohmann/json.hpp>
 

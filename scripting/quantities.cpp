@@ -77,8 +77,8 @@ std::string quantity_unit(const std::string& quantity, const World& w) {
     if (parts[0] == "group" && parts.size() == 4) return vector_unit(parts[2]);
     if (parts[0] == "wall" && parts.size() == 3) return parts[1] == "force" ? "N" : "N m";
     if (parts[0] == "probe" && parts.size() == 2) {
-        const int f = w.field_index(parts[1]);
-        return f < 0 || w.field_unit(f) == "1" ? "" : w.field_unit(f);
+        const int f = w.fields.index(parts[1]);
+        return f < 0 || w.fields.unit(f) == "1" ? "" : w.fields.unit(f);
     }
     if (parts[0] == "measure" && parts.size() == 2) {
         const auto it = measurements().find(parts[1]);

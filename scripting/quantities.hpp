@@ -3,7 +3,7 @@
 // their unit into summary.json, and `plab plot` labels its axes with it.
 #pragma once
 
-#include <plab_core/world.hpp>
+#include <world/world.hpp>
 
 #include <string>
 #include <vector>

@@ -1,12 +1,12 @@
 // Checkpoint and restart of a whole run (docs/restart.md): the plug-ins it
 // needs, the scene it was started from, the world's state
-// (plab_core/checkpoint.cpp), the command sequence with the progress of the
+// (core/src/io/checkpoint.cpp), the command sequence with the progress of the
 // current command, and the output counters. A restart rebuilds the scene's
 // structure (plug-ins, groups, model instances, passes, commands) from the
 // stored scene with any --set applied, then replaces the state by the file's.
 #include "simulation.hpp"
 
-#include <plab_core/checkpoint.hpp>
+#include <io/checkpoint.hpp>
 
 #include <csignal>
 #include <filesystem>

@@ -65,7 +65,7 @@ void Simulation::load(const Node& root) {
     }
     world_->gravity = root.vec_or("gravity", dim, Vec::Zero());
     load_stability(root.has("stability") ? root.at("stability") : Node(json::object(), "scene.stability"));
-    if (root.has("skin")) world_->skin = root.at("skin").number(0.0, kInf, false, true);
+    if (root.has("skin")) world_->set_skin(root.at("skin").number(0.0, kInf, false, true));
     load_plugins(root.has("plugins") ? root.at("plugins") : Node(json::array(), "scene.plugins"));
     if (root.has("limits")) {
         const Node l = root.at("limits");
@@ -299,7 +299,7 @@ void Simulation::check_calibrated_lattice(const Node& cal, const LatticeCells& c
                      "size (docs/bonded-structures.md)", cal.path(), c.path);
 }
 
-// The instability detector's limits (core/src/plab_core/stability.hpp);
+// The instability detector's limits (core/src/monitor/stability.hpp);
 // the domain is the scene's `domain` when it has one.
 void Simulation::load_stability(const Node& n) {
     n.allow_keys({"enabled", "energy_gain", "domain_margin"});

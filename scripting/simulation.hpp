@@ -8,7 +8,7 @@
 #include "progress.hpp"
 #include "vtk_output.hpp"
 
-#include <plab_core/world.hpp>
+#include <world/world.hpp>
 
 #include <chrono>
 #include <ctime>

@@ -172,8 +172,8 @@ std::string balls_vtp(const World& w, const VtkOptions& opt) {
     v.add_real("velocity", 3, flatten(b.velocity));
     v.add_real("angular_velocity", 3, flatten(b.angular_velocity));
     v.add_real("force", 3, flatten(b.force));
-    for (std::size_t f = 0; f < w.field_names().size(); ++f)
-        if (w.field_computed(int(f))) v.add_real(w.field_names()[f], 1, const_cast<World&>(w).field(int(f)));
+    for (std::size_t f = 0; f < w.fields.names().size(); ++f)
+        if (w.field_computed(int(f))) v.add_real(w.fields.names()[f], 1, const_cast<World&>(w).fields.column(int(f)));
     std::vector<double> stress;  // per-ball average stress, tension positive (row-major 3x3)
     stress.reserve(9 * b.size());
     for (const auto& sigma : w.ball_stress())

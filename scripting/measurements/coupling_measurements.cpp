@@ -27,15 +27,15 @@ Measurement group_field(const Node& with, const World& w) {
     with.allow_keys({"group", "field", "reduce"});
     const int group = measured_group(with, w);
     const std::string name = with.at("field").string();
-    const int field = w.field_index(name);
+    const int field = w.fields.index(name);
     if (field < 0) {
         std::string known;
-        for (const auto& f : w.field_names()) known += (known.empty() ? "" : ", ") + f;
+        for (const auto& f : w.fields.names()) known += (known.empty() ? "" : ", ") + f;
         with.at("field").fail("no per-body field \"" + name + "\"; fields in this scene: " + (known.empty() ? "none" : known));
     }
     const std::string op = with.has("reduce") ? with.at("reduce").choice({"mean", "max", "min", "sum"}) : "mean";
     return [group, field, op](const World& x) {
-        const std::vector<double>& v = x.field(field);
+        const std::vector<double>& v = x.fields.column(field);
         double acc = op == "max" ? -kInf : op == "min" ? kInf : 0.0;
         std::size_t n = 0;
         for (std::size_t i = 0; i < x.bodies.size(); ++i) {

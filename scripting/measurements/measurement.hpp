@@ -9,7 +9,7 @@
 
 #include "../json_reader.hpp"
 
-#include <plab_core/world.hpp>
+#include <world/world.hpp>
 
 #include <functional>
 #include <map>

@@ -29,7 +29,7 @@ Measurement hydrostatic_pressure_error(const Node& with, const World& w) {
     with.allow_keys({"group", "field", "rest_density", "gravity", "surface_level", "exclude_above", "average_from",
                      "frame_acceleration"});
     const int group = measured_group(with, w);
-    const int field = w.field_index(with.string_or("field", "sph_pressure"));
+    const int field = w.fields.index(with.string_or("field", "sph_pressure"));
     if (field < 0) with.fail("this scene has no field \"" + with.string_or("field", "sph_pressure") + "\"");
     const double rho0 = with.at("rest_density").positive(), g = with.at("gravity").positive();
     const double H = with.at("surface_level").number(), top = with.number_or("exclude_above", kInf);
@@ -45,7 +45,7 @@ Measurement hydrostatic_pressure_error(const Node& with, const World& w) {
     s->p_sum.assign(s->judged.size(), 0.0);
     s->y_sum.assign(s->judged.size(), 0.0);
     return [s, field, rho0, g, H, from, a](const World& x) {
-        const std::vector<double>& p = x.field(field);
+        const std::vector<double>& p = x.fields.column(field);
         const double rise = frame_rise(a, x.time);
         const bool averaging = x.time >= from && x.step_count > 0;
         if (averaging) s->window += x.last_dt;

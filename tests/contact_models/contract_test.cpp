@@ -3,8 +3,8 @@
 // outside the activity range, opposite force when the ends swap,
 // objectivity under rotation, the same result for batch size 1 and N, no
 // NaN at extreme inputs, and a positive stable timestep.
-#include <plab_core/plugin_host.hpp>
-#include <plab_core/types.hpp>
+#include <host/plugin_host.hpp>
+#include <common/types.hpp>
 
 #include <catch2/catch.hpp>
 

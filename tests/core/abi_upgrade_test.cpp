@@ -3,7 +3,7 @@
 // and the host must not read past the end of its description.
 #include "simulation.hpp"
 
-#include <plab_core/plugin_host.hpp>
+#include <host/plugin_host.hpp>
 
 #include <catch2/catch.hpp>
 

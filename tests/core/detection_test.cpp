@@ -52,7 +52,7 @@ TEST_CASE("the cell list with a skin finds every overlapping pair, every step", 
             ++checked;
         }
         CHECK(max_contacts > 50);  // the pile really formed contacts
-        CHECK(w.rebuilds > 10);    // and the lists were rebuilt on the way
+        CHECK(w.rebuilds() > 10);    // and the lists were rebuilt on the way
     }
 }
 
@@ -105,7 +105,7 @@ TEST_CASE("the coordination-number pass counts the contacts of each ball", "[det
     World& w = sim.world();
     w.fixed_dt = 1e-5;
     sim.cycle(3000);
-    const int field = w.field_index("coordination_number");
+    const int field = w.fields.index("coordination_number");
     REQUIRE(field >= 0);
     std::vector<double> expected(w.bodies.size(), 0.0);
     const ContactSet& s = w.instances()[0]->balls;
@@ -114,7 +114,7 @@ TEST_CASE("the coordination-number pass counts the contacts of each ball", "[det
     const ContactSet& walls = w.instances()[0]->walls;
     for (std::size_t k = 0; k < walls.size(); ++k)
         if (walls.active[k]) expected[walls.end1[k]] += 1;
-    CHECK(w.field(field) == expected);
+    CHECK(w.fields.column(field) == expected);
     CHECK(*std::max_element(expected.begin(), expected.end()) == 6);
 }
 
@@ -131,10 +131,10 @@ TEST_CASE("a contact model reads body fields and accumulates into them through i
     sim.set_quiet(true);
     World& w = sim.world();
     sim.cycle(2000);
-    const int value = w.field_index("probe_value"), sum = w.field_index("probe_sum");
+    const int value = w.fields.index("probe_value"), sum = w.fields.index("probe_sum");
     REQUIRE(value >= 0);
     REQUIRE(sum >= 0);
-    for (std::size_t i = 0; i < w.bodies.size(); ++i) w.field(value)[i] = double(i);
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) w.fields.column(value)[i] = double(i);
     sim.cycle(1);
     std::vector<double> expected(w.bodies.size(), 0.0);
     const ContactSet& s = w.instances()[0]->balls;
@@ -149,8 +149,8 @@ TEST_CASE("a contact model reads body fields and accumulates into them through i
         if (wl.active[k]) expected[wl.end1[k]] = std::nan("");
     for (std::size_t i = 0; i < expected.size(); ++i) {
         INFO("ball " << i);
-        if (std::isnan(expected[i])) CHECK(std::isnan(w.field(sum)[i]));
-        else CHECK(w.field(sum)[i] == expected[i]);
+        if (std::isnan(expected[i])) CHECK(std::isnan(w.fields.column(sum)[i]));
+        else CHECK(w.fields.column(sum)[i] == expected[i]);
     }
     CHECK(std::count_if(expected.begin(), expected.end(), [](double x) { return x > 0; }) > 10);
 }
@@ -164,11 +164,11 @@ TEST_CASE("the batch says which read fields hold their default, and says it no l
     sim.set_quiet(true);
     World& w = sim.world();
     sim.cycle(2000);
-    const int value = w.field_index("probe_value"), claims = w.field_index("probe_claims");
+    const int value = w.fields.index("probe_value"), claims = w.fields.index("probe_claims");
     REQUIRE(claims >= 0);
     const auto claimed = [&] {
         double sum = 0;
-        for (double c : w.field(claims)) sum += c;
+        for (double c : w.fields.column(claims)) sum += c;
         return sum;
     };
     const auto touching = [&] {
@@ -180,15 +180,15 @@ TEST_CASE("the batch says which read fields hold their default, and says it no l
     sim.cycle(1);  // nothing writes probe_value and it is 2.0 (its default) everywhere: claimed on every contact
     REQUIRE(touching() > 10);
     CHECK(claimed() == touching());
-    w.field(value)[3] = 2.5;  // one value set from outside: no claim from the next force pass on
+    w.fields.column(value)[3] = 2.5;  // one value set from outside: no claim from the next force pass on
     sim.cycle(1);
     CHECK(claimed() == 0.0);
-    w.field(value)[3] = 2.0;  // back at the default everywhere: claimed again
+    w.fields.column(value)[3] = 2.0;  // back at the default everywhere: claimed again
     sim.cycle(1);
     CHECK(claimed() == touching());
 }
 
-#include "plab_core/row_lists.hpp"
+#include "forces/row_lists.hpp"
 #include <random>
 
 // The lists of flagged rows (the range test's in-range and just-left lists,

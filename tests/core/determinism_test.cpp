@@ -50,7 +50,7 @@ TEST_CASE("a lean rebuild gives the same state as one that keeps its buffers", "
         sim.set_quiet(true);
         sim.world().lean_rebuild_rows = lean_rows;
         sim.cycle(1500);
-        REQUIRE(sim.world().rebuilds > 10);
+        REQUIRE(sim.world().rebuilds() > 10);
         return sim.world().state_hash();
     };
     CHECK(run(0) == run(std::size_t(1) << 30));

@@ -3,8 +3,8 @@
 #include "simulation.hpp"
 #include "settling_scene.hpp"
 
-#include <plab_core/error.hpp>
-#include <plab_core/plugin_host.hpp>
+#include <common/error.hpp>
+#include <host/plugin_host.hpp>
 
 #include <catch2/catch.hpp>
 

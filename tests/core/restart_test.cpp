@@ -6,7 +6,7 @@
 #include "simulation.hpp"
 #include "settling_scene.hpp"
 
-#include <plab_core/checkpoint.hpp>
+#include <io/checkpoint.hpp>
 
 #include "../support/file_bytes.hpp"
 

@@ -112,14 +112,14 @@ TEST_CASE("fluid-particle coupling returns the drag to the fluid: momentum conse
         double scale = 0;  // Σ m|v|: the size of the terms summed
         for (std::size_t i = 0; i < w.bodies.size(); ++i) scale += w.bodies.mass[i] * w.bodies.velocity[i].norm();
         const Vec p0 = momentum(false), solids0 = momentum(true);
-        const int fx = w.field_index("fp_force_x"), fy = w.field_index("fp_force_y"), fz = w.field_index("fp_force_z");
+        const int fx = w.fields.index("fp_force_x"), fy = w.fields.index("fp_force_y"), fz = w.fields.index("fp_force_z");
         double worst_share_sum = 0;
         for (int k = 0; k < 200; ++k) {
             w.step();
             // the shares V_f W / S add up to the pass's fluid force on each solid (eqs. 81-82)
             for (std::size_t i = 0; i < w.bodies.size(); ++i) {
                 if (w.bodies.group[i] != solid) continue;
-                const Vec f(w.field(fx)[i], w.field(fy)[i], w.field(fz)[i]);
+                const Vec f(w.fields.column(fx)[i], w.fields.column(fy)[i], w.fields.column(fz)[i]);
                 REQUIRE(f.norm() > 0);
                 worst_share_sum = std::max(worst_share_sum, (w.bodies.force[i] - f).norm() / f.norm());
             }
@@ -130,7 +130,7 @@ TEST_CASE("fluid-particle coupling returns the drag to the fluid: momentum conse
         // ... and none was lost or made
         CHECK((momentum(false) - p0).norm() <= 1e-12 * scale);
         // the fluid around the solids is thinned: voidage below one
-        const auto& eps = w.field(w.field_index("voidage"));
+        const auto& eps = w.fields.column(w.fields.index("voidage"));
         double lowest = 1;
         for (std::size_t i = 0; i < w.bodies.size(); ++i)
             if (w.bodies.group[i] != solid) lowest = std::min(lowest, eps[i]);

@@ -59,7 +59,7 @@ TEST_CASE("summation density of a resting lattice is rho0 inside to the kernel's
     sim.set_quiet(true);
     World& w = sim.world();
     w.prepare();  // the forces at this state: the density is summed at the lattice positions
-    const auto& rho = w.field(w.field_index("sph_density"));
+    const auto& rho = w.fields.column(w.fields.index("sph_density"));
     const double discretisation = lattice_sum(sph::Kernel{sph::KernelKind::cubic_spline, 2, 1.3 * dp});
     // the midpoint rule for ∫W = 1 at dp/h = 0.77: 0.995 (stated in docs/sph.md)
     CHECK(discretisation == Approx(0.995).margin(0.005));
@@ -86,7 +86,7 @@ TEST_CASE("normalised summation density removes the free-surface deficit of a re
     sim.set_quiet(true);
     World& w = sim.world();
     for (int k = 0; k < 3; ++k) w.prepare();  // repeated: ρ_j of the previous sum enters eq. 9
-    const auto& rho = w.field(w.field_index("sph_density"));
+    const auto& rho = w.fields.column(w.fields.index("sph_density"));
     // uniform m_j/ρ_j: Σ m W / Σ (m/ρ) W = ρ0 at every particle, edges and corners included
     for (std::size_t i = 0; i < w.bodies.size(); ++i) CHECK(rho[i] == Approx(rho0).epsilon(1e-12));
 }
@@ -127,7 +127,7 @@ TEST_CASE("summation density over several chunks of pairs is eq. 8 and the same 
             w.prepare();
             w.prepare();  // eq. 9 reads the previous sum's densities
             REQUIRE(w.active_contacts() > 2 * 16384);
-            densities.push_back(w.field(w.field_index("sph_density")));
+            densities.push_back(w.fields.column(w.fields.index("sph_density")));
             if (normalised || threads > 1) continue;
             // eq. 8 pair by pair over every body, the body itself included
             const auto& x = w.bodies.position;
@@ -161,8 +161,8 @@ TEST_CASE("the Tait pressure of sph_eos is B((rho/rho0)^gamma - 1) for whole and
         sim.set_quiet(true);
         World& w = sim.world();
         w.prepare();
-        const auto& rho = w.field(w.field_index("sph_density"));
-        const auto& p = w.field(w.field_index("sph_pressure"));
+        const auto& rho = w.fields.column(w.fields.index("sph_density"));
+        const auto& p = w.fields.column(w.fields.index("sph_pressure"));
         const double B = rho0 * 10 * 10 / gamma;  // c0 = 10 m/s
         double lowest = rho0, highest = 0;
         for (std::size_t i = 0; i < rho.size(); ++i) {

@@ -55,9 +55,9 @@ Outcome run(const json& scene, int threads) {
     sim.cycle(150);
     World& w = sim.world();
     double rate = 0;
-    for (double r : w.field(w.field_index("sph_drho_dt"))) rate = std::max(rate, std::fabs(r));
-    return {w.state_hash(), rate, w.field_computed(w.field_index("sph_drho_dt")), w.active_contacts(),
-            w.ball_stress(), w.rebuilds};
+    for (double r : w.fields.column(w.fields.index("sph_drho_dt"))) rate = std::max(rate, std::fabs(r));
+    return {w.state_hash(), rate, w.field_computed(w.fields.index("sph_drho_dt")), w.active_contacts(),
+            w.ball_stress(), w.rebuilds()};
 }
 
 } // namespace
@@ -93,12 +93,12 @@ TEST_CASE("a pass that needs the rates stage, added mid-run, unpacks the SPH set
     sim.set_quiet(true);
     sim.cycle(75);
     World& w = sim.world();
-    REQUIRE(w.field_computed(w.field_index("sph_drho_dt")) == false);
+    REQUIRE(w.field_computed(w.fields.index("sph_drho_dt")) == false);
     // sph_density_integration reads sph_drho_dt: from now on the rates stage
     // runs over full columns, which the packed set must get back
     w.add_pass("sph_density_integration", {1.0});
     sim.cycle(75);
-    CHECK(w.field_computed(w.field_index("sph_drho_dt")));
+    CHECK(w.field_computed(w.fields.index("sph_drho_dt")));
     CHECK(w.state_hash() == straight);  // the summation pass overwrites the integrated density
 }
 

@@ -105,7 +105,7 @@ TEST_CASE("SPH pair forces conserve linear momentum to round-off in a free blob"
         CHECK(largest_force > 0);  // the fluid does push
         CHECK((momentum() - p0).norm() <= 1e-12 * scale);
         // pressures developed: the density changed through the continuity equation
-        const auto& rho = w.field(w.field_index("sph_density"));
+        const auto& rho = w.fields.column(w.fields.index("sph_density"));
         double spread = 0;
         for (double r : rho) spread = std::max(spread, std::fabs(r - 1000));
         CHECK(spread > 0.1);

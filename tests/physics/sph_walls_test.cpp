@@ -202,7 +202,7 @@ TEST_CASE("delta-SPH diffuses a density spike and conserves the fluid volume to 
     sim.set_quiet(true);
     World& w = sim.world();
     w.prepare();
-    std::vector<double>& rho = w.field(w.field_index("sph_density"));
+    std::vector<double>& rho = w.fields.column(w.fields.index("sph_density"));
     const std::size_t centre = 5 * 10 + 5;
     rho[centre] = 1010;
     w.mark_dirty();

@@ -62,7 +62,7 @@ TEST_CASE("XSPH drift correction carries no net momentum and leaves the momentum
     Simulation sim(noisy_block(0.5));
     sim.set_quiet(true);
     World& w = sim.world();
-    const int cx = w.field_index("drift_velocity_correction_x"), cy = w.field_index("drift_velocity_correction_y");
+    const int cx = w.fields.index("drift_velocity_correction_x"), cy = w.fields.index("drift_velocity_correction_y");
     REQUIRE(cx >= 0);
     REQUIRE(cy >= 0);
     double scale = 0;  // Σ m |v|: the size of the terms summed
@@ -76,7 +76,7 @@ TEST_CASE("XSPH drift correction carries no net momentum and leaves the momentum
         w.step();
         double sx = 0, sy = 0, size = 0;
         for (std::size_t i = 0; i < w.bodies.size(); ++i) {
-            const double m = w.bodies.mass[i], dx = w.field(cx)[i], dy = w.field(cy)[i];
+            const double m = w.bodies.mass[i], dx = w.fields.column(cx)[i], dy = w.fields.column(cy)[i];
             sx += m * dx;
             sy += m * dy;
             size += m * std::hypot(dx, dy);

@@ -7,7 +7,7 @@
 #include "simulation.hpp"
 #include "../core/settling_scene.hpp"
 
-#include <plab_core/checkpoint.hpp>
+#include <io/checkpoint.hpp>
 
 #include "../support/file_bytes.hpp"
 

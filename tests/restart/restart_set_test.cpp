@@ -5,7 +5,7 @@
 #include "simulation.hpp"
 #include "../core/settling_scene.hpp"
 
-#include <plab_core/error.hpp>
+#include <common/error.hpp>
 
 #include <catch2/catch.hpp>
 #include <spdlog/sinks/ostream_sink.h>

@@ -36,7 +36,7 @@ TEST_CASE("group_field reduces a per-body field over a group's balls: mean, max,
     Simulation sim(four_balls());
     World& w = sim.world();
     const int f = w.register_field("probe", 0.0);
-    w.field(f) = {1.0, 5.0, 3.0, 100.0};  // the last ball is in group b
+    w.fields.column(f) = {1.0, 5.0, 3.0, 100.0};  // the last ball is in group b
     CHECK(make("group_field", {{"group", "a"}, {"field", "probe"}}, w)(w) == Approx(3.0));
     CHECK(make("group_field", {{"group", "a"}, {"field", "probe"}, {"reduce", "max"}}, w)(w) == 5.0);
     CHECK(make("group_field", {{"group", "a"}, {"field", "probe"}, {"reduce", "min"}}, w)(w) == 1.0);

@@ -53,8 +53,8 @@ TEST_CASE("a material's constants reach the sph model and the passes that name i
     // Islam eq. 10 with one fluid neighbour at rest at rho0 (p = 0), 1 cm above:
     // p_w = rho_f g·(x_w - x_f) = 1000 · 9.81 · 0.01, the scene gravity filled into gravity_y;
     // eq. 11 (inverse Tait with the material's c0 and gamma): rho_w = rho0 (p_w/B + 1)^(1/gamma)
-    const auto& p = w.field(w.field_index("sph_pressure"));
-    const auto& rho = w.field(w.field_index("sph_density"));
+    const auto& p = w.fields.column(w.fields.index("sph_pressure"));
+    const auto& rho = w.fields.column(w.fields.index("sph_density"));
     const double p_w = 1000 * 9.81 * 0.01, B = 1000 * 15.0 * 15.0 / 7;
     CHECK(p[1] == Approx(p_w).epsilon(1e-12));
     CHECK(rho[1] == Approx(1000 * std::pow(p_w / B + 1, 1.0 / 7)).epsilon(1e-12));
@@ -112,7 +112,7 @@ TEST_CASE("speed_of_sound auto is 10 x the expected maximum speed of the materia
         // the passes got the same c0: the wall ball's density is the inverse Tait of that c0
         sim.world().prepare();
         const double p_w = 1000 * 9.81 * 0.01, B = 1000 * 100 * c.speed * c.speed / 7;
-        CHECK(sim.world().field(sim.world().field_index("sph_density"))[1] ==
+        CHECK(sim.world().fields.column(sim.world().fields.index("sph_density"))[1] ==
               Approx(1000 * std::pow(p_w / B + 1, 1.0 / 7)).epsilon(1e-12));
         const json report = sim.summary()["speed_of_sound"];
         REQUIRE(report.size() == 1);

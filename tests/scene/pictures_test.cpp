@@ -125,10 +125,10 @@ TEST_CASE("a plug-in field's unit reaches the picture and the history columns", 
     Simulation sim(two_discs());
     World& w = sim.world();
     const int f = w.register_field("probe_density", 1000.0, "kg/m3");
-    CHECK(w.field_unit(f) == "kg/m3");
+    CHECK(w.fields.unit(f) == "kg/m3");
     CHECK(w.register_field("probe_density", 1000.0, "ignored") == f);
-    CHECK(w.field_unit(f) == "kg/m3");  // the first unit declared stays
-    CHECK(w.field_unit(w.register_field("plain", 0.0)) == "");
+    CHECK(w.fields.unit(f) == "kg/m3");  // the first unit declared stays
+    CHECK(w.fields.unit(w.register_field("plain", 0.0)) == "");
     std::string unit;
     snapshot_values(w, "probe_density", unit);
     CHECK(unit == "kg/m3");

@@ -2,9 +2,9 @@
 // box) the automatic step must still be safe, so each assigned group pair is
 // asked, through one synthetic touching contact between its lightest balls,
 // what stiffness or step limit it will bring.
-#include "world.hpp"
+#include "world/world.hpp"
 
-#include "error.hpp"
+#include "common/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -113,7 +113,7 @@ StableStep probe_contact(const ModelInstance& inst, int dim, const Probe& a, con
 } // namespace
 
 StableStep World::nominal_timestep() {
-    const int ng = int(groups_.size());
+    const int ng = assignment_.group_count();
     std::vector<Probe> lightest(ng);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         Probe& p = lightest[bodies.group[i]];
@@ -124,7 +124,7 @@ StableStep World::nominal_timestep() {
     StableStep best;
     for (int a = 0; a < ng; ++a)
         for (int b = a; b < ng; ++b) {
-            const int inst = cmat_[a * ng + b];
+            const int inst = assignment_.assigned(a, b);
             if (inst < 0) continue;
             for (int side = 0; side < 2; ++side) {
                 const int ball_g = side ? b : a, other = side ? a : b;
@@ -135,7 +135,7 @@ StableStep World::nominal_timestep() {
                 else continue;
                 if (s.critical < best.critical) {
                     best = s;
-                    best.limited_by.insert(best.limited_by.find(':'), " for groups " + groups_[ball_g] + "-" + groups_[other]);
+                    best.limited_by.insert(best.limited_by.find(':'), " for groups " + assignment_.group_name(ball_g) + "-" + assignment_.group_name(other));
                 }
             }
         }

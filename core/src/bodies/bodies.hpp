@@ -2,7 +2,7 @@
 // A body's index may change; its id never does (contacts are keyed by id).
 #pragma once
 
-#include "types.hpp"
+#include "common/types.hpp"
 
 #include <map>
 #include <string>
@@ -21,6 +21,12 @@ struct BallSpec {
     double local_damping = 0;
     double viscous_damping = 0;
 };
+
+// The per-body loops work on fixed blocks of bodies; a sum over the bodies
+// is taken per block and the blocks added in order, so it does not depend on
+// the thread count.
+constexpr std::size_t kBodyBlock = 1024;
+inline std::size_t body_blocks(std::size_t bodies) { return (bodies + kBodyBlock - 1) / kBodyBlock; }
 
 struct Bodies {
     int dim = 3;

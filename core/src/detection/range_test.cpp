@@ -7,7 +7,7 @@
 // ABI 6: summation density needs no square root of its own) and, for the
 // centre-force path, the rows in range of each batch with their centre
 // distance, so that pack_centre_rows() visits only those.
-#include "dense_batch.hpp"
+#include "forces/packed_batch.hpp"
 
 #include <algorithm>
 

@@ -6,7 +6,7 @@
 // diagnostic buffer (abi.h, ABI 2).
 #pragma once
 
-#include "types.hpp"
+#include "common/types.hpp"
 
 #include <string>
 

@@ -1,11 +1,11 @@
 // Force–displacement: the host computes each candidate contact's geometry
 // once (normal, gap, contact point, relative velocity), calls each model once
 // per batch of contacts, then sums forces onto bodies in a fixed order.
-#include "world.hpp"
+#include "world/world.hpp"
 
-#include "dense_batch.hpp"
-#include "error.hpp"
-#include "row_lists.hpp"
+#include "forces/packed_batch.hpp"
+#include "common/error.hpp"
+#include "forces/row_lists.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -113,7 +113,7 @@ bool World::wall_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
             put(s.point, k, point);
             put(s.rel_velocity, k, walls.velocity_at(f.wall, point) - vi);
             put(s.rel_angular_velocity, k, walls.walls[f.wall].angular_velocity - B.angular_velocity[i]);
-            clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, install_pairs)
+            clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, fill_pair_constants)
             exceeded |= -gap > inst.max_overlap * ri;
         }
     }
@@ -149,7 +149,7 @@ bool World::ball_geometry_rows(const ModelInstance& inst, ContactSet& s, std::si
             put(s.point, k, p.point);
             put(s.rel_velocity, k, p.rel_velocity);
             put(s.rel_angular_velocity, k, p.rel_angular_velocity);
-            clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, install_pairs)
+            clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, fill_pair_constants)
             exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
         }
     }
@@ -258,7 +258,7 @@ void World::find_still_instances() {
     bool at_centres = false;
     for (const auto& inst : instances_) at_centres |= (inst->desc->flags & PLAB_MODEL_FORCE_AT_CENTRES) != 0;
     if (!at_centres) return;
-    const std::size_t ng = groups_.size();
+    const std::size_t ng = std::size_t(assignment_.group_count());
     still_group_.assign(ng, 1);
     const std::uint8_t* fixity = bodies.fixity.data();
     const int* group = bodies.group.data();
@@ -273,7 +273,7 @@ void World::find_still_instances() {
     std::fill(still_instance_.begin(), still_instance_.end(), 1);
     for (std::size_t a = 0; a < ng; ++a)
         for (std::size_t b = 0; b < ng; ++b) {
-            const int inst = cmat_[a * ng + b];
+            const int inst = assignment_.assigned(a, b);
             if (inst >= 0 && !(still_group_[a] && still_group_[b])) still_instance_[inst] = 0;
         }
 }
@@ -309,12 +309,12 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     s.batch_energy.assign(kBatchEnergies * ((n + kContactBatch - 1) / kContactBatch), 0.0);
     if (n == 0) return;
     const ReadFields fields = read_fields(inst);
-    // ball–ball rows go to the model packed (dense_batch.hpp), unless it
+    // ball–ball rows go to the model packed (forces/packed_batch.hpp), unless it
     // accumulates body fields in this stage (those sums walk the full
     // columns, reduce()); a rates-stage model's force-stage sums are not kept
     const bool dense = with_geometry && (inst.fields_accumulated.empty() || inst.desc->rates_stage);
     const bool at_centres = (inst.desc->flags & PLAB_MODEL_FORCE_AT_CENTRES) != 0;
-    const std::uint32_t c0 = set_chunks_[si], c1 = set_chunks_[si + 1];
+    const std::uint32_t c0 = sums_.first_chunk(si), c1 = sums_.end_chunk(si);
     if (dense && at_centres && inst.uses(PLAB_IO_DT_LIMIT))
         batch_limits_[si].assign((n + kContactBatch - 1) / kContactBatch, BatchLimit{kInf, 0});
     // a still set (still_centre_set) whose rows mark_ball_rows_in_range()
@@ -327,8 +327,8 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     bool exceeded = false;
 #pragma omp parallel for schedule(static) reduction(| : failed, exceeded) if (n >= parallel_min)
     for (std::uint32_t c = c0; c < c1; ++c) {
-        Chunk& ch = chunks_[c];
-        clear_chunk(ch);
+        Chunk& ch = sums_.chunk(c);
+        sums_.clear(ch, dim);
         ch.forces_only = dense && at_centres;
         if (still) continue;
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
@@ -380,7 +380,7 @@ void World::record_breaks(ModelInstance& inst, ContactSet& s) {
 // for body i at end 1 or end 2.
 void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i) {
     for (std::size_t a = 0; a < owner.fields_accumulated.size(); ++a)
-        fields_[owner.fields_accumulated[a]][i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
+        fields.column(owner.fields_accumulated[a])[i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
 }
 
 // What each active row of [begin, end) adds to its two bodies (force and
@@ -390,10 +390,10 @@ void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uin
 void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const auto& B = bodies;
-    double* fm = partial_fm_.data() + ch.offset;  // body i at width * (i - lo), or listed
-    const std::size_t width = slot_width(false);
+    double* fm = sums_.slots(ch);  // body i at width * (i - lo), or listed
+    const std::size_t width = slot_doubles(dim, false);
     const std::int32_t lo = ch.lo;
-    const std::uint32_t* listed = ch.listed ? listed_slot_[si].data() : nullptr;
+    const std::uint32_t* listed = ch.listed ? sums_.listed_slot(si) : nullptr;
     double strain = 0, slip = 0, dashpot = 0, broken = 0, wall_power = 0;
     // the active rows, listed without a branch per row
     std::uint32_t rows[kContactBatch];
@@ -407,14 +407,14 @@ void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, c
         broken += s.break_energy[k];
         const Vec f2(&s.force[3 * k]), point(&s.point[3 * k]);
         const Vec m1 = (point - B.position[s.end1[k]]).cross(-f2) + Vec(&s.moment1[3 * k]);
-        add_to_slot(f1m1, -f2, m1);  // (x - f and x + (-f) are the same bits)
+        add_to_slot(dim, f1m1, -f2, m1);  // (x - f and x + (-f) are the same bits)
         if (s.with_wall) {
             // power of the ball on the wall: -(force on the wall) . v_wall(point)
             wall_power -= f2.dot(walls.velocity_at(walls.facets[s.end2[k]].wall, point));
             continue;
         }
         const Vec m2 = (point - B.position[s.end2[k]]).cross(f2) + Vec(&s.moment2[3 * k]);
-        add_to_slot(fm + width * std::size_t(s.end2[k] - lo), f2, m2);
+        add_to_slot(dim, fm + width * std::size_t(s.end2[k] - lo), f2, m2);
     }
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = wall_power;
@@ -424,9 +424,9 @@ void World::scatter_to_chunks(std::uint32_t si) {
     const std::size_t n = sets_[si]->size();
     sets_[si]->batch_energy.assign(kBatchEnergies * ((n + kContactBatch - 1) / kContactBatch), 0.0);
 #pragma omp parallel for schedule(static) if (n >= parallel_min)
-    for (std::uint32_t c = set_chunks_[si]; c < set_chunks_[si + 1]; ++c) {
-        Chunk& ch = chunks_[c];
-        clear_chunk(ch);
+    for (std::uint32_t c = sums_.first_chunk(si); c < sums_.end_chunk(si); ++c) {
+        Chunk& ch = sums_.chunk(c);
+        sums_.clear(ch, dim);
         ch.forces_only = false;
         for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch)
             scatter_rows(si, o, std::min(ch.end, o + kContactBatch), ch);
@@ -439,21 +439,20 @@ void World::scatter_to_chunks(std::uint32_t si) {
 // them, so they are summed on demand, each body in its fixed entry order.
 void World::sum_stiffness() const {
     if (stiffness_valid_) return;
-    constexpr std::uint32_t end2_bit = 1u << 31;
     const std::size_t n = bodies.size();
     k_trans_.assign(n, 0.0);
     k_rot_.assign(n, 0.0);
-    if (entry_start_.size() == n + 1) {
+    if (body_contacts_.built_for(n)) {
 #pragma omp parallel for schedule(static) if (n >= parallel_min)
         for (std::size_t i = 0; i < n; ++i) {
             double kt = 0, kr = 0;
-            for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-                const ContactSet& s = *sets_[entries_[e].set];
-                const std::uint32_t k = entries_[e].row & ~end2_bit;
+            for (const BodyContact& en : body_contacts_.of(i)) {
+                const ContactSet& s = *sets_[en.set];
+                const std::uint32_t k = en.row();
                 if (!s.active[k]) continue;
                 double arm2;
                 if (s.packed) {  // the contact point lies on the normal, its radius + half the gap from each centre
-                    const double arm = end_radius(s, k, entries_[e].row & end2_bit) + 0.5 * contact_gap(s, k);
+                    const double arm = end_radius(s, k, en.end2()) + 0.5 * contact_gap(s, k);
                     arm2 = arm * arm;
                 } else {
                     arm2 = (Vec(&s.point[3 * k]) - bodies.position[i]).squaredNorm();
@@ -492,90 +491,17 @@ void World::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
     }
 }
 
-namespace {
-template <int D> using Int = std::integral_constant<int, D>;
-
-// A chunk's slot added to a body's force f and moment m (the layout of
-// World::add_to_slot(), slot_width()), then cleared for the next sweep.
-template <int Dim, bool ForcesOnly>
-inline void take_slot(Vec& f, Vec& m, double* slot) {
-    constexpr std::size_t width = slot_doubles(Dim, ForcesOnly);
-    if (Dim == 3) {
-        f += Vec(slot);
-        if (!ForcesOnly) m += Vec(slot + 3);
-    } else {
-        f.x() += slot[0];
-        f.y() += slot[1];
-        if (!ForcesOnly) m.z() += slot[2];
-    }
-    for (std::size_t c = 0; c < width; ++c) slot[c] = 0.0;
-}
-} // namespace
-
-// Bodies [i0, i1): gravity and applied loads, then the chunks' partial
-// sums in chunk order (the same order for any thread count), each slot
-// cleared as it is taken (Chunk::zeroed).
-void World::add_chunk_sums(std::size_t i0, std::size_t i1) {
-    // column addresses in locals: Eigen's vector stores may alias anything
-    Vec* force = bodies.force.data();
-    Vec* moment = bodies.moment.data();
-    const double* mass = bodies.mass.data();
-    const Vec g = gravity;
-    if (bodies.has_applied_loads()) {
-        const Vec *applied_f = bodies.applied_force.data(), *applied_m = bodies.applied_moment.data();
-        for (std::size_t i = i0; i < i1; ++i) {
-            force[i] = mass[i] * g + applied_f[i];
-            moment[i] = applied_m[i];
-        }
-    } else {
-        for (std::size_t i = i0; i < i1; ++i) {
-            force[i] = mass[i] * g;
-            moment[i] = Vec::Zero();
-        }
-    }
-    const auto take = [&](const Chunk& ch, auto d, auto forces_only) {
-        constexpr int Dim = decltype(d)::value;
-        constexpr bool F = decltype(forces_only)::value;
-        double* p = partial_fm_.data() + ch.offset;
-        constexpr std::size_t width = slot_doubles(Dim, F);
-        if (ch.listed) {  // its balls in [i0, i1), ascending
-            const std::int32_t* first = chunk_bodies_.data() + ch.first_listed;
-            const std::int32_t* q0 = std::lower_bound(first, first + ch.slots, std::int32_t(i0));
-            const std::int32_t* q1 = std::lower_bound(q0, first + ch.slots, std::int32_t(i1));
-            for (const std::int32_t* q = q0; q < q1; ++q)
-                take_slot<Dim, F>(force[*q], moment[*q], p + width * std::size_t(q - first));
-            return;
-        }
-        const std::size_t c0 = std::max(i0, std::size_t(std::max(ch.lo, 0))), c1 = std::min(i1, std::size_t(ch.hi + 1));
-        for (std::size_t i = c0; i < c1; ++i) take_slot<Dim, F>(force[i], moment[i], p + width * (i - std::size_t(ch.lo)));
-    };
-    for (const Chunk& ch : chunks_) {
-        if (dim == 3) ch.forces_only ? take(ch, Int<3>{}, std::true_type{}) : take(ch, Int<3>{}, std::false_type{});
-        else ch.forces_only ? take(ch, Int<2>{}, std::true_type{}) : take(ch, Int<2>{}, std::false_type{});
-    }
-}
-
-// Before a sweep adds into chunk ch (and before it sets the chunk's width):
-// the slots the last sweep wrote, at its width, to zero, unless
-// add_chunk_sums() left them so.
-void World::clear_chunk(Chunk& ch) {
-    if (!ch.zeroed) std::fill_n(partial_fm_.data() + ch.offset, slot_width(ch.forces_only) * ch.slots, 0.0);
-    ch.zeroed = false;
-}
-
 // Bodies [i0, i1) after their contact sums: field accumulations, damping
 // (its work added to local_work), the 2D projection. False when a body's
 // state may be non-finite.
 bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
-    constexpr std::uint32_t end2_bit = 1u << 31;
     if (any_accumulation_)  // fields of rates-stage models are summed after that stage
         for (std::size_t i = i0; i < i1; ++i)
-            for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-                const Entry en = entries_[e];
+            for (const BodyContact& en : body_contacts_.of(i)) {
                 const ContactSet& s = *sets_[en.set];
-                const std::uint32_t k = en.row & ~end2_bit;
+                const std::uint32_t k = en.row();
                 const ModelInstance& owner = *set_owner_[en.set];
-                if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.row & end2_bit, i);
+                if (s.active[k] && !owner.desc->rates_stage) accumulate(owner, s, k, en.end2(), i);
             }
     const double *local_damping = bodies.local_damping.data(), *viscous_damping = bodies.viscous_damping.data();
     for (std::size_t i = i0; i < i1; ++i)
@@ -613,24 +539,24 @@ bool World::reduce(double closing_kick) {
     const std::size_t n = bodies.size();
     for (auto& inst : instances_)
         if (!inst->desc->rates_stage)
-            for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
+            for (int f : inst->fields_accumulated) std::fill(fields.column(f).begin(), fields.column(f).end(), 0.0);
     if (!swept_)  // force_sweep() summed the rows already
         for (std::uint32_t si = 0; si < sets_.size(); ++si) scatter_to_chunks(si);
     bool non_finite = false;
     const std::size_t n_blocks = body_blocks();
     block_local_work_.assign(n_blocks, 0.0);  // local damping work per block
-    if (closing_kick > 0) prepare_body_blocks();
+    if (closing_kick > 0) leapfrog_.prepare_blocks(bodies);
 #pragma omp parallel for schedule(static) reduction(| : non_finite) if (n >= parallel_min)
     for (std::size_t b = 0; b < n_blocks; ++b) {
         const std::size_t i0 = b * kBodyBlock, i1 = std::min(n, i0 + kBodyBlock);
-        add_chunk_sums(i0, i1);
+        sums_.add_to_bodies(bodies, gravity, i0, i1);
         double work = 0;
         non_finite |= !finish_bodies(i0, i1, work);
         block_local_work_[b] = work;
         // the step's closing half kick while the block is in cache (advance())
-        if (closing_kick > 0) kick_block_of_bodies(b, closing_kick, true);
+        if (closing_kick > 0) leapfrog_.kick_block(bodies, b, closing_kick, true);
     }
-    for (Chunk& ch : chunks_) ch.zeroed = true;  // (add_chunk_sums() cleared every slot it took)
+    sums_.all_taken();  // (add_to_bodies() cleared every slot it took)
     double local_work = 0;
     for (double w : block_local_work_) local_work += w;
     energies.local_damping += local_work;
@@ -672,23 +598,21 @@ void World::rates_stage() {
     for (auto& inst : instances_) {
         if (!inst->desc->rates_stage) continue;
         any = true;
-        for (int f : inst->fields_accumulated) std::fill(fields_[f].begin(), fields_[f].end(), 0.0);
+        for (int f : inst->fields_accumulated) std::fill(fields.column(f).begin(), fields.column(f).end(), 0.0);
         compute(*inst, inst->balls, PLAB_STAGE_RATES);
         compute(*inst, inst->walls, PLAB_STAGE_RATES);
     }
     if (!any) return;
-    constexpr std::uint32_t end2_bit = 1u << 31;
     const std::size_t n = bodies.size();
 #pragma omp parallel for schedule(static) if (n >= parallel_min)
     for (std::size_t i = 0; i < n; ++i)
-        for (std::uint32_t e = entry_start_[i]; e < entry_start_[i + 1]; ++e) {
-            const Entry en = entries_[e];
+        for (const BodyContact& en : body_contacts_.of(i)) {
             const ModelInstance& owner = *set_owner_[en.set];
             if (!owner.desc->rates_stage) continue;
             const ContactSet& s = *sets_[en.set];
-            const std::uint32_t k = en.row & ~end2_bit;
+            const std::uint32_t k = en.row();
             if (!s.active[k]) continue;
-            accumulate(owner, s, k, en.row & end2_bit, i);
+            accumulate(owner, s, k, en.end2(), i);
         }
     run_passes(PLAB_PHASE_RATES_DONE);
 }
@@ -716,17 +640,17 @@ bool World::field_computed(int f) const {
 // (World::field(), a checkpoint) counts at once.
 void World::find_fields_at_default() {
     std::vector<std::uint8_t>& at_default = field_at_default_;  // first the candidates (no allocation in the cycle)
-    at_default.assign(fields_.size(), 0);
+    at_default.assign(fields.size(), 0);
     for (const auto& inst : instances_)
         for (int f : inst->fields_read) at_default[f] = 1;
     for (const auto& inst : instances_)
         for (int f : inst->fields_accumulated) at_default[f] = 0;
     for (const PassInstance& p : passes_)
         for (int f : p.fields) at_default[f] = 0;
-    for (std::size_t f = 0; f < fields_.size(); ++f) {
+    for (std::size_t f = 0; f < fields.size(); ++f) {
         if (!at_default[f]) continue;
-        const double d = field_defaults_[f];
-        at_default[f] = std::all_of(fields_[f].begin(), fields_[f].end(), [d](double v) { return v == d; });
+        const double d = fields.default_value(int(f));
+        at_default[f] = std::all_of(fields.column(f).begin(), fields.column(f).end(), [d](double v) { return v == d; });
     }
 }
 
@@ -734,10 +658,10 @@ ReadFields World::read_fields(const ModelInstance& inst) const {
     ReadFields r;
     for (std::size_t f = 0; f < inst.fields_read.size(); ++f) {
         const int idx = inst.fields_read[f];
-        r.cols[f] = fields_[idx].data();
+        r.cols[f] = fields.column(idx).data();
         // (the field's default is its first registrant's: it must be this model's too)
         const bool at_default = std::size_t(idx) < field_at_default_.size() && field_at_default_[idx] &&
-                                field_defaults_[idx] == inst.desc->fields_read[f].default_value;
+                                fields.default_value(idx) == inst.desc->fields_read[f].default_value;
         if (at_default) r.at_default |= std::uint64_t(1) << f;
     }
     return r;
@@ -798,7 +722,7 @@ StableStep World::stable_timestep() {
         best.limited_by = "model " + limit_model->model + " for groups " + contact_groups(*limit_set, limit_row) +
                           ": its step limit";
     } else if (ball < bodies.size()) {
-        best.limited_by = "model " + stiffest_model(ball) + " for group " + groups_[bodies.group[ball]] + ": " +
+        best.limited_by = "model " + stiffest_model(ball) + " for group " + assignment_.group_name(bodies.group[ball]) + ": " +
                           (rotation ? "rotation" : "translation") + " of ball id " + std::to_string(bodies.id[ball]) +
                           (rotation ? " (sqrt(I/sum k_r))" : " (sqrt(m/sum k))");
     }
@@ -808,20 +732,20 @@ StableStep World::stable_timestep() {
 // "grains-walls": the groups of a contact's two ends.
 std::string World::contact_groups(const ContactSet& s, std::size_t k) const {
     const int g2 = s.with_wall ? walls.walls[walls.facets[s.end2[k]].wall].group : bodies.group[s.end2[k]];
-    return groups_[bodies.group[s.end1[k]]] + "-" + groups_[g2];
+    return assignment_.group_name(bodies.group[s.end1[k]]) + "-" + assignment_.group_name(g2);
 }
 
 // The model that gives ball i most of its stiffness.
 std::string World::stiffest_model(std::size_t i) const {
-    constexpr std::uint32_t end2_bit = 1u << 31;
     std::vector<double> k_of(instances_.size(), 0.0);
-    for (std::uint32_t e = entry_start_.empty() ? 0 : entry_start_[i]; !entry_start_.empty() && e < entry_start_[i + 1]; ++e) {
-        const ContactSet& s = *sets_[entries_[e].set];
-        const std::uint32_t k = entries_[e].row & ~end2_bit;
-        if (!s.active[k]) continue;
-        for (std::size_t m = 0; m < instances_.size(); ++m)
-            if (set_owner_[entries_[e].set] == instances_[m].get()) k_of[m] += s.k_t_at(k);
-    }
+    if (body_contacts_.built_for(bodies.size()))
+        for (const BodyContact& en : body_contacts_.of(i)) {
+            const ContactSet& s = *sets_[en.set];
+            const std::uint32_t k = en.row();
+            if (!s.active[k]) continue;
+            for (std::size_t m = 0; m < instances_.size(); ++m)
+                if (set_owner_[en.set] == instances_[m].get()) k_of[m] += s.k_t_at(k);
+        }
     const auto top = std::max_element(k_of.begin(), k_of.end());
     return top == k_of.end() || *top <= 0 ? std::string("(none)") : instances_[std::size_t(top - k_of.begin())]->model;
 }

@@ -1,9 +1,9 @@
 // Range test, packing and unpacking of ball–ball rows for the dense batch
-// (dense_batch.hpp). The geometry is ball_pair_kinematics(), as in
+// (forces/packed_batch.hpp). The geometry is ball_pair_kinematics(), as in
 // ball_geometry_rows(); the sums are those of
 // scatter_rows(), so results are the same bit for bit.
-#include "dense_batch.hpp"
-#include "row_lists.hpp"
+#include "forces/packed_batch.hpp"
+#include "forces/row_lists.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -236,7 +236,7 @@ int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double d
 namespace {
 struct UnpackedSums { double strain = 0, slip = 0, dashpot = 0, broken = 0; };
 // unpack_rows()'s loop over the packed rows, for 2D or 3D: a 2D slot takes
-// fx, fy and the z moment alone (World::add_to_slot), so only that
+// fx, fy and the z moment alone (add_to_slot, reduction/chunked_sums.hpp), so only that
 // component of r x F is worked out.
 template <int Dim>
 UnpackedSums unpack_loop(ContactSet& s, const DenseBatch& d, double* fm, std::size_t width, std::int32_t lo,
@@ -285,8 +285,8 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
                         const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);
-    double* fm = partial_fm_.data() + ch.offset;  // body i at width * (i - lo)
-    const std::size_t width = slot_width(false);
+    double* fm = sums_.slots(ch);  // body i at width * (i - lo)
+    const std::size_t width = slot_doubles(dim, false);
     const std::int32_t lo = ch.lo;
     const bool pure_moments = inst.uses(PLAB_IO_MOMENTS), breaks = inst.uses(PLAB_IO_BREAK_ENERGY);
     write_forces(s, d, contact_forces_kept_);

@@ -1,6 +1,6 @@
-#include "plugin_host.hpp"
+#include "host/plugin_host.hpp"
 
-#include "error.hpp"
+#include "common/error.hpp"
 
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>

@@ -1,9 +1,9 @@
 // World set-up (groups, assignment table, fields, passes) and the cycle.
-// Detection lives in detection.cpp, the force pass in force_pass.cpp.
-#include "world.hpp"
+// Detection lives in detection/, the force pass in forces/.
+#include "world/world.hpp"
 
-#include "buffers.hpp"
-#include "error.hpp"
+#include "common/buffers.hpp"
+#include "common/error.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,18 +13,6 @@
 #include <stdexcept>
 
 namespace plab {
-
-int ModelInstance::history_slot(const std::string& name) const {
-    for (uint32_t k = 0; k < desc->history_count; ++k)
-        if (name == desc->history[k].name) return int(k);
-    throw std::out_of_range("contact model " + model + " has no history slot " + name);
-}
-
-double ModelInstance::property(const std::string& name) const {
-    for (uint32_t k = 0; k < desc->property_count; ++k)
-        if (name == desc->properties[k].key) return props[k];
-    throw std::out_of_range("contact model " + model + " has no property " + name);
-}
 
 const char* const phase_names[ph_count] = {"timestep", "law_of_motion", "contact_detection", "pre_force_passes",
                                            "force_displacement", "reduction", "post_force_passes", "integration",
@@ -45,24 +33,6 @@ World::~World() {
         if (inst->desc->destroy && inst->state) inst->desc->destroy(inst->state);
     for (auto& p : passes_)
         if (p.desc->destroy && p.state) p.desc->destroy(p.state);
-}
-
-int World::group_index(const std::string& name) {
-    const int found = find_group(name);
-    if (found >= 0) return found;
-    groups_.push_back(name);
-    const int n = int(groups_.size());
-    std::vector<int> grown(std::size_t(n) * n, -1);
-    for (int a = 0; a < n - 1; ++a)
-        for (int b = 0; b < n - 1; ++b) grown[a * n + b] = cmat_[a * (n - 1) + b];
-    cmat_ = std::move(grown);
-    return n - 1;
-}
-
-int World::find_group(const std::string& name) const {
-    for (std::size_t i = 0; i < groups_.size(); ++i)
-        if (groups_[i] == name) return int(i);
-    return -1;
 }
 
 int World::add_instance(const std::string& model, std::vector<double> props) {
@@ -103,35 +73,8 @@ int World::add_instance(const std::string& model, std::vector<double> props) {
 }
 
 void World::assign(int a, int b, int instance) {
-    const int n = int(groups_.size());
-    cmat_[a * n + b] = instance;
-    cmat_[b * n + a] = instance;
+    assignment_.assign(a, b, instance);
     mark_dirty();
-}
-
-int World::assigned(int a, int b) const { return cmat_[a * int(groups_.size()) + b]; }
-
-int World::field_index(const std::string& name) const {
-    for (std::size_t i = 0; i < field_names_.size(); ++i)
-        if (field_names_[i] == name) return int(i);
-    return -1;
-}
-
-int World::register_field(const std::string& name, double default_value, const char* unit) {
-    const int found = field_index(name);
-    if (found >= 0) {
-        if (field_units_[found].empty() && unit) field_units_[found] = unit;
-        return found;
-    }
-    field_names_.push_back(name);
-    field_defaults_.push_back(default_value);
-    field_units_.push_back(unit ? unit : "");
-    fields_.emplace_back(bodies.size(), default_value);
-    return int(fields_.size()) - 1;
-}
-
-void World::resize_fields() {
-    for (std::size_t f = 0; f < fields_.size(); ++f) fields_[f].resize(bodies.size(), field_defaults_[f]);
 }
 
 void World::add_pass(const std::string& name, std::vector<double> props) {
@@ -162,7 +105,7 @@ void World::run_passes(std::uint32_t phase) {
     for (auto& p : passes_) {
         if (p.desc->phase != phase) continue;
         cols.clear();
-        for (int f : p.fields) cols.push_back(fields_[f].data());
+        for (int f : p.fields) cols.push_back(fields.column(f).data());
         plab_pass_view v{};
         v.dim = uint32_t(dim);
         v.body_count = uint32_t(bodies.size());
@@ -192,19 +135,12 @@ void World::run_passes(std::uint32_t phase) {
     }
 }
 
-double World::effective_skin() const {
-    if (skin >= 0) return skin;
-    double sum = 0;
-    for (double r : bodies.radius) sum += r;
-    return bodies.size() ? 0.25 * sum / double(bodies.size()) : 0.0;
-}
-
 void World::prepare() {
     bodies.trim();  // the scene is built: no more room for bodies than bodies
-    resize_fields();
+    fields.resize(bodies.size());
     k_trans_.assign(bodies.size(), 0.0);
     k_rot_.assign(bodies.size(), 0.0);
-    need_rebuild_ = true;
+    neighbours_.invalidate();
     {
         PhaseTimer t{phase_seconds[ph_detection]};
         rebuild();
@@ -215,8 +151,8 @@ void World::prepare() {
     last_dt = 0;
     contact_forces_kept_ = true;  // (also after a step that failed before its forces)
     force_pass();
-    cache_inverse_masses();
-    body_energies(0.0);
+    leapfrog_.cache_inverse_masses(bodies);
+    leapfrog_.body_energies(bodies, 0.0);
     sum_energies(0.0);  // states (kinetic, strain) at this instant; no flow
     last_dt = dt;
     prepared_ = true;
@@ -284,7 +220,7 @@ void World::take_snapshot() {
     s.velocity = bodies.velocity;
     s.angular_velocity = bodies.angular_velocity;
     s.walls = walls;
-    s.fields = fields_;
+    s.fields = fields.columns();
     s.energies = energies;
     s.time = time;
     s.last_dt = last_dt;
@@ -312,7 +248,7 @@ void World::restore_snapshot() {
     bodies.velocity = s.velocity;
     bodies.angular_velocity = s.angular_velocity;
     walls = s.walls;
-    fields_ = s.fields;
+    fields.set_columns(s.fields);
     energies = s.energies;
     time = s.time;
     last_dt = s.last_dt;
@@ -324,7 +260,7 @@ void World::restore_snapshot() {
             const SetState& st = s.sets[k++];
             c->end1 = st.end1; c->end2 = st.end2; c->history = st.history;  // (prepare()'s rebuild lays the columns out)
             if (c->with_wall) {  // its side memory (facet_distance) is the rows' before the restore:
-                c->normal.clear();  // the restored rows start without it (install_pairs)
+                c->normal.clear();  // the restored rows start without it (carry_history)
                 c->interior.clear();
             }
         }
@@ -347,11 +283,11 @@ void World::advance() {
     {
         PhaseTimer t{phase_seconds[ph_motion]};
         kick_and_drift(dt);
-        wall_motion_since_build_ += walls.move(dt, dim);
+        neighbours_.walls_moved(walls.move(dt, dim));
     }
     {
         PhaseTimer t{phase_seconds[ph_detection]};
-        if (need_rebuild_ || displacement_exceeds_skin()) rebuild();
+        if (neighbours_.stale(bodies)) rebuild();
     }
     time += dt;
     ++step_count;
@@ -360,7 +296,7 @@ void World::advance() {
     force_pass(post_force ? 0.0 : 0.5 * dt);  // the closing half kick inside reduce(), unless a pass comes between
     {
         PhaseTimer t{phase_seconds[ph_motion]};
-        if (post_force) kick(0.5 * dt, true);
+        if (post_force) leapfrog_.kick(bodies, 0.5 * dt, true, parallel_min);
         sum_energies(dt);
     }
     {
@@ -441,305 +377,38 @@ void World::force_pass(double closing_kick) {
     }
 }
 
-namespace {
-
-// The body columns a kick reads, their addresses in locals: Eigen's vector
-// stores may alias anything, so GCC would otherwise reload every column's
-// address per body.
-struct KickColumns {
-    Vec *velocity, *angular_velocity;
-    const Vec *force, *moment, *applied_force, *applied_moment;
-    const double *mass, *inertia;
-    explicit KickColumns(Bodies& B)
-        : velocity(B.velocity.data()), angular_velocity(B.angular_velocity.data()), force(B.force.data()),
-          moment(B.moment.data()), applied_force(B.applied_force.data()), applied_moment(B.applied_moment.data()),
-          mass(B.mass.data()), inertia(B.inertia.data()), loads(B.has_applied_loads()) {}
-    bool loads;  // applied loads kept (Bodies: none until one is applied)
-};
-
-// What body i adds to the energy sums at its synchronised velocities (PFC's
-// bookkeeping): kinetic energy, and the work over the step dt of its applied
-// loads and, along explicitly fixed DOFs, of the reaction that keeps the
-// velocity.
-// (Dim 2: z of v and x, y of w are zero, so their squares are left out;
-// the sums are the same bits.)
-template <int Dim = 3>
-inline void add_body_energy(const KickColumns& B, std::size_t i, const Vec& v, const Vec& w, double dt,
-                            std::uint8_t explicit_fix, double& kinetic, double& boundary) {
-    if (Dim == 2)
-        kinetic += 0.5 * B.mass[i] * (v.x() * v.x() + v.y() * v.y()) + 0.5 * B.inertia[i] * (w.z() * w.z());
-    else
-        kinetic += 0.5 * B.mass[i] * v.squaredNorm() + 0.5 * B.inertia[i] * w.squaredNorm();
-    if (B.loads) boundary += B.applied_force[i].dot(v) * dt + B.applied_moment[i].dot(w) * dt;
-    if (explicit_fix)
-        for (int c = 0; c < 3; ++c) {
-            if (explicit_fix & (dof_x << c)) boundary -= B.force[i][c] * v[c] * dt;
-            if (explicit_fix & (dof_rx << c)) boundary -= B.moment[i][c] * w[c] * dt;
-        }
+// What the drift reads besides the bodies: gravity, the detector's domain,
+// the positions at the last build and the drift correction fields.
+DriftInputs World::drift_inputs() const {
+    DriftInputs in;
+    in.gravity = gravity;
+    in.lo = baseline_.lo;
+    in.hi = baseline_.hi;
+    in.position_at_build = &neighbours_.position_at_build();
+    const int cx = fields.index(PLAB_DRIFT_CORRECTION_X), cy = fields.index(PLAB_DRIFT_CORRECTION_Y),
+              cz = fields.index(PLAB_DRIFT_CORRECTION_Z);
+    if (cx >= 0 && cy >= 0 && cz >= 0) in.correction = {fields.column(cx).data(), fields.column(cy).data(), fields.column(cz).data()};
+    return in;
 }
 
-// Half a kick (thesis eq. 33: v += h F/m, w += h M/I) of bodies [i0, i1)
-// with every DOF of their dimension free (2D: x, y and the spin about z),
-// without a branch per component; with Energies, their energy sums too.
-// SpinFixed: every body's rotations are fixed and its translations free
-// (SPH particles), so only v is kicked; the energy sums are kick_block()'s.
-template <int Dim, bool Energies, bool SpinFixed = false>
-void kick_free_block(Bodies& bodies, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
-                     double& kinetic, double& boundary) {
-    const KickColumns B(bodies);
-    const std::uint8_t spin_fixed = bodies.rotation_dofs();  // (explicitly: 2D's rx, ry are implicit)
-    for (std::size_t i = i0; i < i1; ++i) {
-        // on copies, stored whole: the energy sums read them back from
-        // registers, not through a store of parts and a wider load
-        Vec v = B.velocity[i], w = B.angular_velocity[i];
-        const Vec& f = B.force[i];
-        const Vec& m = B.moment[i];
-        if (Dim == 3) {
-            for (int c = 0; c < 3; ++c) {
-                v[c] += h * f[c] * inv_m[i];
-                if (!SpinFixed) w[c] += h * m[c] * inv_i[i];
-            }
-        } else {
-            v[0] += h * f[0] * inv_m[i];
-            v[1] += h * f[1] * inv_m[i];
-            if (!SpinFixed) w[2] += h * m[2] * inv_i[i];
-        }
-        B.velocity[i] = v;
-        if (!SpinFixed) B.angular_velocity[i] = w;
-        if (Energies) add_body_energy<Dim>(B, i, v, w, 2 * h, SpinFixed ? spin_fixed : 0, kinetic, boundary);
-    }
-}
-
-// The same for bodies that may have fixed DOFs: a fixed component keeps its velocity.
-void kick_block(Bodies& bodies, const double* inv_m, const double* inv_i, double h, std::size_t i0, std::size_t i1,
-                bool energies, double& kinetic, double& boundary) {
-    const std::uint8_t implicit = bodies.implicit_fixity();
-    const std::uint8_t* fixity = bodies.fixity.data();
-    const KickColumns B(bodies);
-    for (std::size_t i = i0; i < i1; ++i) {
-        const std::uint8_t fix = fixity[i];
-        for (int c = 0; c < 3; ++c) {
-            if (!(fix & (dof_x << c))) B.velocity[i][c] += h * B.force[i][c] * inv_m[i];
-            if (!(fix & (dof_rx << c))) B.angular_velocity[i][c] += h * B.moment[i][c] * inv_i[i];
-        }
-        if (energies) add_body_energy(B, i, B.velocity[i], B.angular_velocity[i], 2 * h, fix & ~implicit, kinetic, boundary);
-    }
-}
-
-} // namespace
-
-void World::cache_inverse_masses() {
-    const std::size_t n = bodies.size();
-    inv_mass_.resize(n);
-    inv_inertia_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        inv_mass_[i] = 1.0 / bodies.mass[i];
-        inv_inertia_[i] = 1.0 / bodies.inertia[i];
-    }
-}
-
-// Half a kick of block b; the closing kick of a step (`closing`) also
-// takes the block's energy sums while the velocities are at hand, for
-// sum_energies().
-void World::kick_block_of_bodies(std::size_t b, double h, bool closing) {
-    const std::size_t i0 = b * kBodyBlock, i1 = std::min(bodies.size(), i0 + kBodyBlock);
-    const double* inv_m = inv_mass_.data();
-    const double* inv_i = inv_inertia_.data();
-    std::uint8_t fixed = 0, every = 0xff;  // explicitly fixed DOFs: of any body in the block, of every one
-    for (std::size_t i = i0; i < i1; ++i) {
-        fixed |= bodies.fixity[i];
-        every &= bodies.fixity[i];
-    }
-    fixed &= ~bodies.implicit_fixity();
-    every &= ~bodies.implicit_fixity();
-    const std::uint8_t spin = bodies.rotation_dofs();
-    double kinetic = 0, boundary = 0;
-    if (fixed == spin && every == spin) {  // rotations fixed, translations free, in every body
-        if (dim == 3)
-            closing ? kick_free_block<3, true, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
-                    : kick_free_block<3, false, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
-        else
-            closing ? kick_free_block<2, true, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
-                    : kick_free_block<2, false, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
-    } else if (fixed)
-        kick_block(bodies, inv_m, inv_i, h, i0, i1, closing, kinetic, boundary);
-    else if (dim == 3)
-        closing ? kick_free_block<3, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
-                : kick_free_block<3, false>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
-    else
-        closing ? kick_free_block<2, true>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary)
-                : kick_free_block<2, false>(bodies, inv_m, inv_i, h, i0, i1, kinetic, boundary);
-    if (closing) {
-        block_kinetic_[b] = kinetic;
-        block_boundary_[b] = boundary;
-    }
+void World::take_drift(const DriftResult& r) {
+    energies.body += r.body_work;
+    left_domain_ = r.left_domain;
+    neighbours_.bodies_moved(r.max_drift2);
 }
 
 // The first half of a step's law of motion: half a kick, the PRE_DRIFT
 // passes (e.g. XSPH: a drift velocity correction from v(t + dt/2)), the
-// drift. Without such a pass or correction the drift of a block follows its
-// kick in the same loop, while v is in cache.
+// drift; without such a pass or correction, in one loop.
 void World::kick_and_drift(double dt) {
-    const std::size_t n = bodies.size(), n_blocks = body_blocks();
-    prepare_body_blocks();
-    const DriftCorrection corr = drift_correction();
-    if (has_passes(PLAB_PHASE_PRE_DRIFT) || corr.on) {
-        kick(0.5 * dt);
+    const DriftInputs in = drift_inputs();
+    if (has_passes(PLAB_PHASE_PRE_DRIFT) || in.corrected()) {
+        leapfrog_.kick(bodies, 0.5 * dt, false, parallel_min);
         run_passes(PLAB_PHASE_PRE_DRIFT);
-        drift(dt);
+        take_drift(leapfrog_.drift(bodies, drift_inputs(), dt, parallel_min));
         return;
     }
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
-    for (std::size_t b = 0; b < n_blocks; ++b) {
-        kick_block_of_bodies(b, 0.5 * dt, false);
-        drift_block(b, dt, corr);
-    }
-    finish_drift();
-}
-
-// Half a kick for every body (see kick_block_of_bodies()).
-void World::kick(double h, bool closing) {
-    const std::size_t n = bodies.size(), n_blocks = body_blocks();
-    prepare_body_blocks();
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
-    for (std::size_t b = 0; b < n_blocks; ++b) kick_block_of_bodies(b, h, closing);
-}
-
-void World::prepare_body_blocks() {
-    const std::size_t n = bodies.size(), n_blocks = body_blocks();
-    if (inv_mass_.size() != n) cache_inverse_masses();  // e.g. a world just loaded from a checkpoint
-    block_kinetic_.resize(n_blocks);
-    block_boundary_.resize(n_blocks);
-    block_body_work_.resize(n_blocks);
-    block_max_drift2_.resize(n_blocks);
-    block_out_.resize(n_blocks);
-}
-
-// The closing kick's energy sums without a kick (prepare(): forces at a state).
-void World::body_energies(double dt) {
-    const std::size_t n = bodies.size(), n_blocks = body_blocks();
-    block_kinetic_.assign(n_blocks, 0.0);
-    block_boundary_.assign(n_blocks, 0.0);
-    const std::uint8_t implicit = bodies.implicit_fixity();
-    const KickColumns cols(bodies);
-    for (std::size_t b = 0; b < n_blocks; ++b)
-        for (std::size_t i = b * kBodyBlock; i < std::min(n, (b + 1) * kBodyBlock); ++i)
-            add_body_energy(cols, i, cols.velocity[i], cols.angular_velocity[i], dt, bodies.fixity[i] & ~implicit,
-                            block_kinetic_[b], block_boundary_[b]);
-}
-
-World::DriftCorrection World::drift_correction() {
-    DriftCorrection c;
-    const int cx = field_index(PLAB_DRIFT_CORRECTION_X), cy = field_index(PLAB_DRIFT_CORRECTION_Y),
-              cz = field_index(PLAB_DRIFT_CORRECTION_Z);
-    c.on = cx >= 0 && cy >= 0 && cz >= 0;
-    if (c.on) c.field = {fields_[cx].data(), fields_[cy].data(), fields_[cz].data()};
-    return c;
-}
-
-// x += (v + correction) dt; the correction (abi.h, PLAB_PHASE_PRE_DRIFT) only
-// where a pass registered its fields, and only along free translational DOFs.
-void World::drift(double dt) {
-    const std::size_t n = bodies.size(), n_blocks = body_blocks();
-    prepare_body_blocks();
-    const DriftCorrection corr = drift_correction();
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
-    for (std::size_t b = 0; b < n_blocks; ++b) drift_block(b, dt, corr);
-    finish_drift();
-}
-
-namespace {
-// What drift_block() sums over a block while x is at hand.
-struct DriftSums {
-    double body_work = 0, max2 = 0;
-    bool out = false;
-};
-
-// The body columns and constants a drift reads; column addresses in
-// locals: Eigen's vector stores may alias anything.
-struct DriftColumns {
-    Vec* position;
-    const Vec *velocity, *built;
-    const double* mass;
-    const std::uint8_t* fixity;
-    Vec lo, hi, g;  // copies: no reload after each store
-};
-
-// x += (v + correction) dt for bodies [i0, i1), any dimension; the
-// correction (the drift correction fields, null: none) only along free
-// translational DOFs.
-DriftSums drift_rows(const DriftColumns& c, const double* const* correction, double dt, std::size_t i0,
-                     std::size_t i1) {
-    DriftSums sums;
-    for (std::size_t i = i0; i < i1; ++i) {
-        Vec dx = c.velocity[i] * dt;
-        if (correction) {
-            const std::uint8_t fix = c.fixity[i];
-            for (int k = 0; k < 3; ++k)
-                if (!(fix & (dof_x << k))) dx[k] += correction[k][i] * dt;
-        }
-        Vec& x = c.position[i];
-        x += dx;
-        sums.body_work += c.mass[i] * c.g.dot(dx);  // exact for a constant force
-        sums.max2 = std::max(sums.max2, (x - c.built[i]).squaredNorm());
-        // a NaN fails every comparison (& rather than &&: no branch per comparison)
-        sums.out |= !((x.x() >= c.lo.x()) & (x.x() <= c.hi.x()) & (x.y() >= c.lo.y()) & (x.y() <= c.hi.y()) &
-                      (x.z() >= c.lo.z()) & (x.z() <= c.hi.z()) & (std::fabs(x.x() + x.y() + x.z()) < kInf));
-    }
-    return sums;
-}
-
-// drift_rows() for a 2D world without a drift correction: z, vz and the
-// domain's z bounds (infinite) never change, so only x and y are worked out
-// (the general loop spends a third of its arithmetic on those zeros). The
-// positions come out the same bits.
-DriftSums drift_plane_rows(const DriftColumns& c, double dt, std::size_t i0, std::size_t i1) {
-    double body_work = 0, max2 = 0;
-    bool out = false;
-    const double gx = c.g.x(), gy = c.g.y(), lox = c.lo.x(), loy = c.lo.y(), hix = c.hi.x(), hiy = c.hi.y();
-    for (std::size_t i = i0; i < i1; ++i) {
-        const double dx = c.velocity[i].x() * dt, dy = c.velocity[i].y() * dt;
-        const double x = c.position[i].x() + dx, y = c.position[i].y() + dy;
-        c.position[i].x() = x;
-        c.position[i].y() = y;
-        body_work += c.mass[i] * (gx * dx + gy * dy);
-        const double ex = x - c.built[i].x(), ey = y - c.built[i].y();
-        max2 = std::max(max2, ex * ex + ey * ey);
-        out |= !((x >= lox) & (x <= hix) & (y >= loy) & (y <= hiy) & (std::fabs(x + y) < kInf));
-    }
-    return {body_work, max2, out};
-}
-} // namespace
-
-// The drift of block b. While x is at hand: the work of gravity, the
-// detector's domain check and the largest displacement since the last
-// build (displacement_exceeds_skin()).
-void World::drift_block(std::size_t b, double dt, const DriftCorrection& corr) {
-    const std::size_t i0 = b * kBodyBlock, i1 = std::min(bodies.size(), i0 + kBodyBlock);
-    // (no reference positions yet: measured against x itself; finish_drift() knows)
-    const bool tracked = position_at_build_.size() == bodies.size();
-    const DriftColumns c{bodies.position.data(), bodies.velocity.data(),
-                         tracked ? position_at_build_.data() : bodies.position.data(), bodies.mass.data(),
-                         bodies.fixity.data(), baseline_.lo, baseline_.hi, gravity};
-    const DriftSums sums = dim == 2 && !corr.on ? drift_plane_rows(c, dt, i0, i1)
-                                                : drift_rows(c, corr.on ? corr.field.data() : nullptr, dt, i0, i1);
-    block_body_work_[b] = sums.body_work;
-    block_max_drift2_[b] = sums.max2;
-    block_out_[b] = sums.out;
-}
-
-// The blocks' drift results, in block order.
-void World::finish_drift() {
-    double body_work = 0, max2 = 0;
-    bool out = false;
-    for (std::size_t b = 0; b < body_blocks(); ++b) {
-        body_work += block_body_work_[b];
-        max2 = std::max(max2, block_max_drift2_[b]);
-        out |= block_out_[b] != 0;
-    }
-    energies.body += body_work;
-    left_domain_ = out;
-    max_drift2_ = position_at_build_.size() == bodies.size() ? max2 : -1;  // -1: no reference, rebuild
+    take_drift(leapfrog_.kick_and_drift(bodies, in, dt, parallel_min));
 }
 
 // For a plug-in author: the model and contact whose output went non-finite.
@@ -770,7 +439,7 @@ void World::check_finite() {
         s << "position " << bodies.position[i].transpose() << ", force " << bodies.force[i].transpose();
         Diagnostic d;
         d.quantity = "non-finite state";
-        d.subject = "ball id " + std::to_string(bodies.id[i]) + " (group " + groups_[bodies.group[i]] + ")";
+        d.subject = "ball id " + std::to_string(bodies.id[i]) + " (group " + assignment_.group_name(bodies.group[i]) + ")";
         d.detail = s.str();
         // for a plug-in author: the model and contact whose output went non-finite
         const std::string culprit = non_finite_contact(i);
@@ -782,11 +451,9 @@ void World::check_finite() {
 // Energy flows over the step just taken; states (kinetic, strain) are
 // recomputed at the synchronised velocities.
 void World::sum_energies(double dt) {
-    double kinetic = 0, boundary = 0;  // the bodies' part, per block (kick(), body_energies())
-    for (std::size_t b = 0; b < block_kinetic_.size(); ++b) {
-        kinetic += block_kinetic_[b];
-        boundary += block_boundary_[b];
-    }
+    // the bodies' part, summed per block by the closing kick or body_energies()
+    const double kinetic = leapfrog_.kinetic();
+    double boundary = leapfrog_.boundary_work();
     // contact energies, summed per batch of rows by scatter_rows()
     double strain = 0;
     for (const ContactSet* s : sets_)

@@ -8,7 +8,7 @@
 // steps that read it, World::contact_forces_wanted).
 #pragma once
 
-#include "world.hpp"
+#include "world/world.hpp"
 
 #include <cstring>
 #include <iterator>

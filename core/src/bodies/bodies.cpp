@@ -1,4 +1,4 @@
-#include "bodies.hpp"
+#include "bodies/bodies.hpp"
 
 #include <cmath>
 

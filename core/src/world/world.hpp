@@ -5,11 +5,18 @@
 // not depend on the thread count.
 #pragma once
 
-#include "bodies.hpp"
-#include "plugin_host.hpp"
-#include "stability.hpp"
-#include "types.hpp"
-#include "walls.hpp"
+#include "bodies/bodies.hpp"
+#include "bodies/fields.hpp"
+#include "contacts/assignment.hpp"
+#include "contacts/body_contacts.hpp"
+#include "contacts/model_instance.hpp"
+#include "detection/neighbour_lists.hpp"
+#include "integration/leapfrog.hpp"
+#include "reduction/chunked_sums.hpp"
+#include "host/plugin_host.hpp"
+#include "monitor/stability.hpp"
+#include "common/types.hpp"
+#include "bodies/walls.hpp"
 
 #include <array>
 #include <functional>
@@ -20,104 +27,7 @@
 
 namespace plab {
 
-// Candidate pairs of one model instance and one kind (ball–ball or ball–wall),
-// with their history and the columns of the contact batch. Rows are sorted by
-// the ids of the two ends (World::row_keys); history is carried across
-// rebuilds by that key.
-// The partial-sum slot layouts (World::slot_width): 2D fx, fy and the
-// moment about z; 3D force, then moment. Forces only (the centre-force
-// path): 2D fx, fy; 3D force.
-constexpr std::size_t slot_doubles(int dim, bool forces_only) {
-    return dim == 2 ? (forces_only ? 2 : 3) : (forces_only ? 3 : 6);
-}
-inline void add_to_slot_2d(double* slot, double fx, double fy, double mz) {
-    slot[0] += fx;
-    slot[1] += fy;
-    slot[2] += mz;
-}
-inline void add_to_slot_3d(double* slot, const Vec& f, const Vec& m) {
-    for (int c = 0; c < 3; ++c) { slot[c] += f[c]; slot[3 + c] += m[c]; }
-}
-
-struct ContactSet {
-    bool with_wall = false;
-    std::vector<std::int32_t> end1, end2;
-    std::vector<double> history;
-    // geometry (inputs of the batch). Ball–ball rows of models that take the
-    // dense path (force_sweep) keep active, gap, normal and point up to date
-    // for every reader; their distance, rel_velocity, rel_angular_velocity,
-    // strain, slip, dashpot and break_energy columns are not written (the
-    // model gets them packed, dense_batch.hpp) and hold stale values. Those
-    // of a PLAB_MODEL_FORCE_AT_CENTRES model (centre_force_batch.cpp) write
-    // back force and dt_limit only: moments, stiffness and energies stay
-    // zero. A `packed` set (World::packs_balls: dense, and no model of the
-    // world runs a rates stage over the full columns) does not even allocate distance, rel_velocity,
-    // rel_angular_velocity, radius1, radius2, mass1, mass2, eff_mass,
-    // eff_radius, strain, slip, dashpot and break_energy, nor gap, normal
-    // and point: readers recompute those three from the positions
-    // (World::contact_gap/contact_normal/contact_point), and take the radii
-    // from the bodies (World::end_radius). ~200 B per row less.
-    bool packed = false;
-    std::vector<std::uint8_t> active, interior;
-    std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
-    std::vector<double> radius1, radius2, mass1, mass2, eff_mass, eff_radius;
-    // outputs
-    std::vector<double> force, moment1, moment2, strain, slip, dashpot, k_t, k_r, dt_limit, break_energy;
-    std::vector<std::vector<double>> acc1, acc2;
-    // per batch of kContactBatch rows: strain, slip, dashpot, bond-break
-    // energy and wall power of the active rows (World::scatter_rows)
-    std::vector<double> batch_energy;
-    bool overlap_exceeded = false;  // an active contact overlaps beyond its model's max_overlap (geometry())
-    bool forces_zero = false;       // force zero and no step limit in every row (World::hold_still)
-
-    std::size_t size() const { return end1.size(); }
-    void resize_columns(std::size_t n, int n_accumulated);
-    void release_columns();  // every per-row column but the ends and history (and a wall set's sides), freed
-    // The per-row columns of doubles (all but ends, flags and history), by
-    // name: checkpoints save them by name, release_columns() frees them.
-    std::vector<std::pair<const char*, std::vector<double>*>> double_columns();
-
-    // The owning model's io and flags (abi.h; set once, World::add_instance).
-    // A packed set does not keep the output columns its model never writes:
-    // a model that declares its io and not PLAB_IO_MOMENTS has no moment
-    // columns (48 B per row), and so on; a centre-force model (SPH) keeps
-    // only force and dt_limit. Readers take the neutral value of a column
-    // not kept, through these accessors.
-    std::uint32_t model_io = 0, model_flags = 0;
-    bool keeps(std::uint32_t io_bit) const;  // PLAB_IO_MOMENTS, _STIFFNESS_ROTATIONAL, _DT_LIMIT, or 0 for k_t
-    double k_t_at(std::size_t k) const { return k_t.empty() ? 0.0 : k_t[k]; }
-    double k_r_at(std::size_t k) const { return k_r.empty() ? 0.0 : k_r[k]; }
-    double dt_limit_at(std::size_t k) const { return dt_limit.empty() ? kInf : dt_limit[k]; }
-    Vec moment1_at(std::size_t k) const { return moment1.empty() ? Vec(Vec::Zero()) : Vec(&moment1[3 * k]); }
-    Vec moment2_at(std::size_t k) const { return moment2.empty() ? Vec(Vec::Zero()) : Vec(&moment2[3 * k]); }
-};
-
-struct DenseBatch;  // dense_batch.hpp: the active rows of one batch, packed for the model
-
-// Rows per call of a model (one C ABI call per batch). Batches are fixed row
-// ranges, never per thread, so sums taken per batch are thread-count free.
-constexpr std::size_t kContactBatch = 512;
-constexpr std::size_t kBatchEnergies = 5;  // ContactSet::batch_energy per batch
-
-struct ModelInstance {
-    std::string model;
-    const plab_contact_model_desc* desc = nullptr;
-    std::vector<double> props;
-    void* state = nullptr;
-    double range = 0;  // activity range (gap or distance, see desc->range_kind)
-    int stride = 0;    // history doubles per contact
-    double max_overlap = kInf;  // stability: overlap limit, fraction of the smaller radius (1)
-    std::vector<int> fields_read, fields_accumulated;  // world field indices
-    ContactSet balls, walls;
-
-    // By name, for measurements: a history slot's index and a property's
-    // value (std::out_of_range when the model has none of that name).
-    int history_slot(const std::string& name) const;
-    double property(const std::string& name) const;
-    // whether the model reads optional input / writes optional output
-    // `bit` (PLAB_IO_*): all of them unless it declared which (abi.h, ABI 5)
-    bool uses(std::uint32_t bit) const { return !(desc->io & PLAB_IO_DECLARED) || (desc->io & bit); }
-};
+struct DenseBatch;  // forces/packed_batch.hpp: the active rows of one batch, packed for the model
 
 // The body fields a model reads, as its batches take them (abi.h): the
 // columns in its `fields_read` order, and which of them hold their
@@ -179,29 +89,26 @@ public:
     Bodies bodies;
     Walls walls;
     Vec gravity = Vec::Zero();
-    double skin = -1;  // neighbour skin, m; < 0: a quarter of the mean radius
     std::size_t parallel_min = kParallelMin;  // shorter loops run on one thread
 
     // ---- groups and the contact-model assignment table (PFC's CMAT) ----
-    int group_index(const std::string& name);   // creates on first use
-    int find_group(const std::string& name) const;  // -1 when unknown
-    const std::vector<std::string>& group_names() const { return groups_; }
+    int group_index(const std::string& name) { return assignment_.group_index(name); }  // creates on first use
+    int find_group(const std::string& name) const { return assignment_.find_group(name); }  // -1 when unknown
+    const std::vector<std::string>& group_names() const { return assignment_.group_names(); }
     // Creates an instance of a loaded model with property values (in the
     // model's declaration order); returns its index.
     int add_instance(const std::string& model, std::vector<double> props);
     // Assigns an instance (or -1: no contact, no cost) to a pair of groups.
     void assign(int group_a, int group_b, int instance);
-    int assigned(int group_a, int group_b) const;
+    int assigned(int group_a, int group_b) const { return assignment_.assigned(group_a, group_b); }
     const std::vector<std::unique_ptr<ModelInstance>>& instances() const { return instances_; }
 
     // ---- per-body fields registered by plug-ins ----
-    int field_index(const std::string& name) const;
-    // A field's unit is the first non-empty unit a plug-in declares for it.
-    int register_field(const std::string& name, double default_value, const char* unit = nullptr);
-    const std::string& field_unit(int index) const { return field_units_[index]; }
-    std::vector<double>& field(int index) { return fields_[index]; }
-    const std::vector<double>& field(int index) const { return fields_[index]; }
-    const std::vector<std::string>& field_names() const { return field_names_; }
+    BodyFields fields;
+    // Registers a field at every body (BodyFields::add).
+    int register_field(const std::string& name, double default_value, const char* unit = nullptr) {
+        return fields.add(name, default_value, unit, bodies.size());
+    }
     // False for a field that only a skipped rates stage would fill (no pass
     // or model reads it, rates_stage_needed): it holds zeros, so outputs
     // leave it out rather than write zeros as if they were values.
@@ -292,90 +199,35 @@ public:
     double end_radius(const ContactSet& s, std::size_t k, bool end2) const {
         return end2 ? (s.with_wall ? 0.0 : bodies.radius[s.end2[k]]) : bodies.radius[s.end1[k]];
     }
-    // A row's key: the ball id of end 1 and the ball or facet id of end 2.
-    // Derived from the ends, not stored (16 B per row): balls and facets are
-    // only ever appended, so an index names the same body at every rebuild.
-    std::pair<BodyId, BodyId> pair_keys(bool with_wall, std::int32_t end1, std::int32_t end2) const {
-        return {bodies.id[end1], with_wall ? walls.facets[end2].id : bodies.id[end2]};
-    }
-    std::pair<BodyId, BodyId> row_keys(const ContactSet& s, std::size_t k) const {
-        return pair_keys(s.with_wall, s.end1[k], s.end2[k]);
-    }
+    // A row's key (contacts/contact_keys.hpp): the ids of its two ends.
+    ContactKey row_keys(const ContactSet& s, std::size_t k) const { return row_key(bodies, walls, s, k); }
     std::uint64_t state_hash() const;       // FNV-1a over positions, velocities, spins
     std::array<double, ph_count> phase_seconds{};
-    std::uint64_t rebuilds = 0;
+    void set_skin(double skin) { neighbours_.skin = skin; }  // m; < 0: a quarter of the mean radius
+    std::uint64_t rebuilds() const { return neighbours_.rebuilds; }
     // After a change of the bodies, walls or models: lists, caches and the
     // last good state are renewed (a snapshot never spans a change).
-    void mark_dirty() { need_rebuild_ = true; prepared_ = false; nominal_valid_ = false; snapshot_.valid = false; }
+    void mark_dirty() { neighbours_.invalidate(); prepared_ = false; nominal_valid_ = false; snapshot_.valid = false; }
 
 private:
     friend struct WorldCheckpoint;  // checkpoint.cpp saves and restores the private state below
     std::shared_ptr<PluginHost> host_;
-    std::vector<std::string> groups_;
-    std::vector<int> cmat_;  // groups × groups → instance, -1 none
+    AssignmentTable assignment_;
     std::vector<std::unique_ptr<ModelInstance>> instances_;
     std::vector<PassInstance> passes_;
-    std::vector<std::string> field_names_;
-    std::vector<std::vector<double>> fields_;
-    std::vector<double> field_defaults_;
-    std::vector<std::string> field_units_;
     std::vector<std::uint8_t> field_at_default_;  // per field, this force pass (find_fields_at_default)
 
     // detection state
-    bool need_rebuild_ = true;
     bool prepared_ = false;
     bool nominal_valid_ = false;
     StableStep nominal_cache_;
-    std::vector<Vec> position_at_build_;
-    double wall_motion_since_build_ = 0;
-    // per-body list of (set, row, side) for the deterministic reduction
-    struct Entry { std::uint32_t set; std::uint32_t row; };  // row's top bit: body is end 2
-    std::vector<std::uint32_t> entry_start_;
-    std::vector<Entry> entries_;
+    NeighbourLists neighbours_;
+    std::vector<TableBuffers> table_buffers_;  // per set, in sets_' order
+    // per-body lists of contact rows, for the sums taken body by body
+    BodyContacts body_contacts_;
     std::vector<ContactSet*> sets_;
     std::vector<const ModelInstance*> set_owner_;
-    // The deterministic reduction. Each set's rows are cut into chunks of
-    // whole batches, their number a function of the row count only (never of
-    // the threads). A chunk adds its active rows' forces and moments, in row
-    // order, into its own partial array over the bodies it touches (lo..hi,
-    // kSlotDoubles per body: force, moment), and reduce() adds the partials
-    // to each body in chunk order: the same sums for any thread count.
-    static constexpr std::size_t kSlotDoubles = 6;
-    // The doubles of a slot in use: only what can be nonzero, so that the
-    // chunks clear, scatter into and add no more than that (the block stays
-    // sized for kSlotDoubles). 3D: force, moment; 2D: fx, fy and the moment
-    // about z (finish_bodies() drops the rest). No moment on the
-    // centre-force path: 3D fx, fy, fz; 2D fx, fy.
-    std::size_t slot_width(bool forces_only) const { return slot_doubles(dim, forces_only); }
-    void add_to_slot(double* slot, const Vec& f, const Vec& m) const {
-        if (dim == 2) add_to_slot_2d(slot, f[0], f[1], m[2]);
-        else add_to_slot_3d(slot, f, m);
-    }
-    struct Chunk {
-        std::uint32_t set;
-        std::size_t begin, end;  // rows
-        std::int32_t lo, hi;     // bodies touched (hi < lo: none)
-        std::size_t offset;      // into partial_fm_
-        // Bodies with a slot in partial_fm_: every body lo..hi, or, for a
-        // `listed` chunk (ball–wall rows touch a few balls spread over all
-        // of them), only the balls it touches: chunk_bodies_[first_listed..]
-        // ascending, row k's ball at slot listed_slot_[set][k].
-        std::size_t slots = 0;
-        // the last sweep added forces alone (the centre-force path, which
-        // has no moments): its slots are slot_width(true) doubles wide
-        bool forces_only = false;
-        // every slot holds zero: add_chunk_sums() clears what it takes
-        // (its lines are then in cache, a separate fill would load them
-        // again), so the next sweep need not clear the chunk
-        bool zeroed = true;
-        bool listed = false;
-        std::size_t first_listed = 0;
-    };
-    std::vector<std::int32_t> chunk_bodies_;
-    std::vector<std::vector<std::uint32_t>> listed_slot_;
-    std::vector<Chunk> chunks_;
-    std::vector<std::uint32_t> set_chunks_;  // chunks of set si: [set_chunks_[si], set_chunks_[si + 1])
-    std::vector<double> partial_fm_;
+    ChunkedSums sums_;  // the deterministic reduction (reduction/chunked_sums.hpp)
     // Per set and batch, for the outputs moment1, moment2, k_t, k_r,
     // dt_limit: the value every row of the batch holds in the set's column,
     // when they all hold the same (zero moments, a constant stiffness). The
@@ -386,8 +238,7 @@ private:
     // was active at the last force pass, or came with its history from the
     // last list): only such rows need their history reset when out of range
     std::vector<std::vector<std::uint8_t>> live_;
-    void build_chunks();
-    void list_chunk_bodies(Chunk& ch);
+    void forget_held_outputs();
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
     bool contact_forces_kept_ = true;  // the last force pass wrote the packed rows' forces (contact_forces_wanted)
@@ -456,7 +307,7 @@ private:
         double balance = 0, body = 0, boundary = 0, dissipated = 0, stored = 0, potential = 0, max_work = 0;
         Vec lo = Vec::Constant(-kInf), hi = Vec::Constant(kInf);
     } baseline_;
-    bool left_domain_ = false;  // a position left the domain or is not finite (drift())
+    bool left_domain_ = false;  // a position left the domain or is not finite (the leapfrog's drift)
     void set_stability_baseline();
     void detect_instability();
     void check_domain_and_finite();
@@ -473,42 +324,14 @@ private:
     void restore_snapshot();
     void advance();
 
-    double effective_skin() const;
-    void resize_fields();
     void rebuild();
-    void build_ball_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out);
-    void build_wall_pairs(std::vector<std::vector<std::array<std::int32_t, 2>>>& out) const;
-    // buffers of rebuild() and install_pairs(), kept between rebuilds
-    // (freed after a lean one)
-    struct RebuildScratch {
-        std::vector<std::vector<std::array<std::int32_t, 2>>> ball_pairs, wall_pairs;
-        std::vector<std::vector<std::vector<std::array<std::int32_t, 2>>>> block_pairs;  // build_ball_pairs()
-        // Per set, in sets_' order: the buffers its next list is built in
-        // (the old list's, after the swap). One pair per set, never shared:
-        // a shared pair would pass the big list's buffers on to every small
-        // or empty set in turn, and each would keep a big one.
-        struct SetBuffers {
-            std::vector<std::int32_t> e1, e2;
-            std::vector<double> history;
-            std::vector<double> normal;          // ball–wall rows: the side each survivor is on
-            std::vector<std::uint8_t> interior;  // (facet_distance, force_pass.cpp)
-        };
-        std::vector<SetBuffers> sets;
-    };
-    RebuildScratch rebuild_scratch_;
-    void install_pairs(ModelInstance& inst, ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs,
-                       RebuildScratch::SetBuffers& t, bool lean);
-    void sort_by_keys(const ContactSet& set, std::vector<std::array<std::int32_t, 2>>& pairs) const;
+    void install(const CarryContext& carry, ModelInstance& inst, ContactSet& set, PairList& pairs, TableBuffers& t);
     void build_entries();
     void fill_pair_constants(ContactSet& set) const;
     // whether the ball–ball rows of a model go to it packed (force_sweep): no
     // model of the world has a rates stage and this one accumulates no field
     bool packs_balls(const ModelInstance& inst) const;
     void lay_out_columns(const ModelInstance& inst, ContactSet& set);
-    // the largest squared displacement since the last build, taken by
-    // drift() while the positions are at hand (-1: no reference positions)
-    double max_drift2_ = -1;
-    bool displacement_exceeds_skin() const;
     void geometry(ModelInstance& inst, ContactSet& set);
     bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
@@ -537,7 +360,7 @@ private:
     void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
     void rates_stage();
     bool rates_stage_needed(const ModelInstance& inst) const;
-    void mark_ball_rows_in_range();  // pass_contacts.cpp
+    void mark_ball_rows_in_range();  // detection/range_test.cpp
     void mark_set_in_range(std::uint32_t set_index, std::size_t* listed);
     void append_pass_contacts(std::uint32_t set_index, std::size_t& listed);
     // The pass-contact columns at n rows. mark_ball_rows_in_range() refills
@@ -548,53 +371,25 @@ private:
     void accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i);
     void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);
-    void keep_bonded_pairs(const ModelInstance& inst, const ContactSet& set,
-                           std::vector<std::array<std::int32_t, 2>>& pairs) const;
     // closing_kick > 0: reduce() takes the step's closing half kick of that
     // length block by block, right after the block's force sums, while its
     // forces and velocities are in cache (advance(), when no POST_FORCE pass
     // runs between them)
     void force_pass(double closing_kick = 0);
     void damp_body(std::size_t body, Vec& force, Vec& moment, double& local_work) const;
-    void add_chunk_sums(std::size_t first_body, std::size_t end_body);
-    void clear_chunk(Chunk& ch);
     bool finish_bodies(std::size_t first_body, std::size_t end_body, double& local_work);
     bool bodies_finite(std::size_t first_body, std::size_t end_body);
     bool reduce(double closing_kick);  // true: a body's state may be non-finite (check_finite() looks)
     void run_passes(std::uint32_t phase);
     bool has_passes(std::uint32_t phase) const;
-    // The per-body loops work on fixed blocks of bodies; a sum over the
-    // bodies is taken per block and the blocks added in order, so it does
-    // not depend on the thread count.
-    static constexpr std::size_t kBodyBlock = 1024;
-    std::size_t body_blocks() const { return (bodies.size() + kBodyBlock - 1) / kBodyBlock; }
-    // 1/m and 1/I of every body, for the kicks; set by prepare() (a change
-    // of mass or inertia marks the world dirty, as any scene change does)
-    std::vector<double> inv_mass_, inv_inertia_;
-    void cache_inverse_masses();
-    // per block: kinetic energy at the synchronised velocities and the work
-    // of applied loads and fixed-DOF reactions over the last step, from the
-    // closing kick (kick(h, true)) or body_energies()
-    std::vector<double> block_kinetic_, block_boundary_;
+    std::size_t body_blocks() const { return plab::body_blocks(bodies.size()); }
     std::vector<double> block_local_work_;  // per block: work of local and viscous damping (reduce)
-    // per block, from the drift: work of gravity, largest squared
-    // displacement since the build, a position out of
-    // the domain or not finite
-    std::vector<double> block_body_work_, block_max_drift2_;
-    std::vector<std::uint8_t> block_out_;
-    struct DriftCorrection {
-        bool on = false;
-        std::array<const double*, 3> field{};
-    };
-    DriftCorrection drift_correction();
-    void prepare_body_blocks();
-    void kick_block_of_bodies(std::size_t block, double half_dt, bool closing);
-    void kick(double half_dt, bool closing = false);
+    // the law of motion (integration/leapfrog.hpp); 1/m and 1/I cached by
+    // prepare() (a change of mass or inertia marks the world dirty)
+    Leapfrog leapfrog_;
+    DriftInputs drift_inputs() const;
     void kick_and_drift(double dt);
-    void body_energies(double dt);
-    void drift(double dt);
-    void drift_block(std::size_t block, double dt, const DriftCorrection& corr);
-    void finish_drift();
+    void take_drift(const DriftResult& r);
     void check_finite();
     std::string non_finite_contact(std::size_t body) const;
     void sum_energies(double dt);

@@ -15,7 +15,7 @@
 // that lost one is refused, naming the slot.
 #pragma once
 
-#include "world.hpp"
+#include "world/world.hpp"
 
 #include <cstdint>
 #include <fstream>

@@ -3,16 +3,16 @@
 // cycle has already streamed (measured 3 % of a settled granular step at
 // N = 1e4), so the bounds are compared where the data is at hand and only
 // flags are read here (measured < 0.5 %, docs/stability.md):
-//   * non-finite positions and particles leaving the domain — in drift();
+//   * non-finite positions and particles leaving the domain — in the drift (integration/);
 //   * energy appearing from nowhere — the energy balance the cycle already
 //     keeps (Energies::balance), O(1);
 //   * overlap beyond a fraction of the smaller radius — in geometry().
 // Passes report what only they know (SPH density) through the pass view's
 // diagnostic (abi.h, ABI 2; World::run_passes). When a check fires, the run
 // stops with a Diagnostic; World::step() restores the last good state.
-#include "world.hpp"
+#include "world/world.hpp"
 
-#include "error.hpp"
+#include "common/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -93,7 +93,7 @@ void World::detect_instability() {
     check_overlaps();
 }
 
-// drift() flags a position outside the domain or not finite while it moves
+// The drift flags a position outside the domain or not finite while it moves
 // the balls (a second pass over positions would cost more than the check);
 // the slow path here names the ball.
 void World::check_domain_and_finite() {
@@ -105,7 +105,7 @@ void World::check_domain_and_finite() {
         const bool finite = p.allFinite();
         if (finite && (p.array() >= b.lo.array()).all() && (p.array() <= b.hi.array()).all()) continue;
         Diagnostic d;
-        d.subject = "ball id " + std::to_string(bodies.id[i]) + " (group " + groups_[bodies.group[i]] + ")";
+        d.subject = "ball id " + std::to_string(bodies.id[i]) + " (group " + assignment_.group_name(bodies.group[i]) + ")";
         std::ostringstream s;
         s << "position " << first_components(p, dim) << ", velocity " << first_components(bodies.velocity[i], dim);
         if (!finite) {
@@ -147,7 +147,7 @@ void World::check_energy() {
     Diagnostic d;
     d.quantity = "energy gain";
     d.subject = bodies.size() ? "largest kinetic energy " + short_number(top_kinetic) + " J on ball id " +
-                                    std::to_string(bodies.id[top]) + " (group " + groups_[bodies.group[top]] + ")"
+                                    std::to_string(bodies.id[top]) + " (group " + assignment_.group_name(bodies.group[top]) + ")"
                               : "no bodies";
     d.detail = "the energy balance rose by " + short_number(gain) + " J with no work to account for it, more than " +
                short_number(stability.energy_gain) + " x the " + short_number(turnover) + " J turned over (scene.stability.energy_gain)";
@@ -183,13 +183,13 @@ void World::overlap_stop(const ModelInstance& inst, const ContactSet& s) {
 
 std::string World::contact_name(const ModelInstance& inst, const ContactSet& s, std::size_t k) const {
     const int i = s.end1[k];
-    std::string name = "contact of ball id " + std::to_string(bodies.id[i]) + " (group " + groups_[bodies.group[i]] + ") and ";
+    std::string name = "contact of ball id " + std::to_string(bodies.id[i]) + " (group " + assignment_.group_name(bodies.group[i]) + ") and ";
     if (s.with_wall) {
         const Wall& w = walls.walls[walls.facets[s.end2[k]].wall];
-        name += "wall '" + w.name + "' (group " + groups_[w.group] + ")";
+        name += "wall '" + w.name + "' (group " + assignment_.group_name(w.group) + ")";
     } else {
         const int j = s.end2[k];
-        name += "ball id " + std::to_string(bodies.id[j]) + " (group " + groups_[bodies.group[j]] + ")";
+        name += "ball id " + std::to_string(bodies.id[j]) + " (group " + assignment_.group_name(bodies.group[j]) + ")";
     }
     return name + ", model " + inst.model;
 }
@@ -255,7 +255,7 @@ std::string name_balls(std::string message, const Bodies& bodies, const std::vec
 // A pass's message reads "QUANTITY: what, where, value against bound;
 // likely cause: ..." (abi.h); the parts go where the host's own go.
 Diagnostic World::pass_diagnostic(const std::string& pass, const std::string& raw) const {
-    const std::string message = name_balls(raw, bodies, groups_);
+    const std::string message = name_balls(raw, bodies, assignment_.group_names());
     Diagnostic d;
     const std::size_t colon = message.find(": ");
     d.quantity = colon == std::string::npos ? pass : message.substr(0, colon);

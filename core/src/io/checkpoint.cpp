@@ -4,7 +4,7 @@
 // the Verlet reference positions): recomputing them after a restart would
 // use whole-step velocities where the uninterrupted run used half-step ones,
 // and the answer would drift in the last bits.
-#include "checkpoint.hpp"
+#include "io/checkpoint.hpp"
 
 #include <cstdio>
 #include <cstring>
@@ -456,22 +456,22 @@ void WorldCheckpoint::save_scalars(const World& w, CheckpointWriter& out) {
     out.u64(w.step_count);
     out.f64(w.last_dt);
     out.vec(w.gravity);
-    out.u64(w.rebuilds);
+    out.u64(w.neighbours_.rebuilds);
     const Energies& e = w.energies;
     for (double v : {e.kinetic, e.strain, e.body, e.boundary, e.slip, e.dashpot, e.local_damping, e.bond_break}) out.f64(v);
 
     out.section("assignment");
-    out.u64(w.groups_.size());
-    for (const auto& g : w.groups_) out.str(g);
-    out.column(w.cmat_);
+    out.u64(w.assignment_.group_names().size());
+    for (const auto& g : w.assignment_.group_names()) out.str(g);
+    out.column(w.assignment_.table());
 }
 
 void WorldCheckpoint::save_fields(const World& w, CheckpointWriter& out) {
     out.section("fields");
-    out.u64(w.field_names_.size());
-    for (std::size_t f = 0; f < w.field_names_.size(); ++f) {
-        out.str(w.field_names_[f]);
-        out.column(w.fields_[f]);
+    out.u64(w.fields.size());
+    for (std::size_t f = 0; f < w.fields.size(); ++f) {
+        out.str(w.fields.names()[f]);
+        out.column(w.fields.column(int(f)));
     }
 }
 
@@ -490,10 +490,11 @@ void WorldCheckpoint::save_contacts(const World& w, CheckpointWriter& out) {
 
 void WorldCheckpoint::save_detection(const World& w, CheckpointWriter& out) {
     out.section("detection");
-    out.u8(w.need_rebuild_);
+    const NeighbourLists::Saved lists = w.neighbours_.saved();
+    out.u8(lists.invalidated);
     out.u8(w.prepared_);
-    out.vecs(w.position_at_build_);
-    out.f64(w.wall_motion_since_build_);
+    out.vecs(lists.position_at_build);
+    out.f64(lists.wall_motion);
     w.sum_stiffness();
     out.column(w.k_trans_);
     out.column(w.k_rot_);
@@ -560,7 +561,7 @@ void WorldCheckpoint::load_scalars(World& w, CheckpointReader& in) {
     w.step_count = in.u64();
     w.last_dt = in.f64();
     w.gravity = in.vec();
-    w.rebuilds = in.u64();
+    w.neighbours_.rebuilds = in.u64();
     Energies& e = w.energies;
     for (double* v : {&e.kinetic, &e.strain, &e.body, &e.boundary, &e.slip, &e.dashpot, &e.local_damping, &e.bond_break})
         *v = in.f64();
@@ -569,29 +570,29 @@ void WorldCheckpoint::load_scalars(World& w, CheckpointReader& in) {
     const std::uint64_t n_groups = in.u64();
     std::vector<std::string> groups;
     for (std::uint64_t g = 0; g < n_groups; ++g) groups.push_back(in.str());
-    if (groups != w.groups_) in.fail("its groups differ from the scene's (the scene is not the one that wrote it)");
+    if (groups != w.assignment_.group_names()) in.fail("its groups differ from the scene's (the scene is not the one that wrote it)");
     std::vector<int> cmat = in.column<int>();
-    if (cmat.size() != w.cmat_.size()) in.fail("the assignment table has the wrong size");
+    if (cmat.size() != w.assignment_.table().size()) in.fail("the assignment table has the wrong size");
     for (int inst : cmat)
         if (inst < -1 || inst >= int(w.instances_.size())) in.fail("the assignment table names model instance " + std::to_string(inst));
-    w.cmat_ = std::move(cmat);
+    w.assignment_.set_table(std::move(cmat));
 }
 
 void WorldCheckpoint::load_fields(World& w, CheckpointReader& in) {
     in.section("fields");
     const std::uint64_t n_fields = in.u64();
-    std::vector<bool> seen(w.field_names_.size(), false);
+    std::vector<bool> seen(w.fields.size(), false);
     for (std::uint64_t f = 0; f < n_fields; ++f) {
         const std::string name = in.str();
         std::vector<double> values = in.column<double>();
-        const int idx = w.field_index(name);
+        const int idx = w.fields.index(name);
         if (idx < 0) in.fail("body field '" + name + "' is registered by no plug-in this scene loads");
         if (values.size() != w.bodies.size()) in.fail("body field '" + name + "' has the wrong length");
-        w.fields_[idx] = std::move(values);
+        w.fields.column(idx) = std::move(values);
         seen[idx] = true;
     }
     for (std::size_t f = 0; f < seen.size(); ++f)  // a field new since the file was written starts at its default
-        if (!seen[f]) w.fields_[f].assign(w.bodies.size(), w.field_defaults_[f]);
+        if (!seen[f]) w.fields.column(int(f)).assign(w.bodies.size(), w.fields.default_value(int(f)));
 }
 
 void WorldCheckpoint::load_contacts(World& w, CheckpointReader& in) {
@@ -634,17 +635,20 @@ void WorldCheckpoint::load_contacts(World& w, CheckpointReader& in) {
 
 void WorldCheckpoint::load_detection(World& w, CheckpointReader& in) {
     in.section("detection");
-    w.need_rebuild_ = in.u8() != 0;
+    NeighbourLists::Saved lists;
+    lists.invalidated = in.u8() != 0;
     w.prepared_ = in.u8() != 0;
-    w.position_at_build_ = in.vecs();
-    w.wall_motion_since_build_ = in.f64();
+    lists.position_at_build = in.vecs();
+    lists.wall_motion = in.f64();
+    const bool reference_missing = !lists.invalidated && lists.position_at_build.size() != w.bodies.size();
+    w.neighbours_.restore(std::move(lists));
     w.k_trans_ = in.column<double>();
     w.k_rot_ = in.column<double>();
     w.stiffness_valid_ = true;  // the sums of the pass that made the saved forces
     w.pc_end1_ = in.column<std::int32_t>();
     w.pc_end2_ = in.column<std::int32_t>();
     w.pc_wall_ = in.column<std::uint8_t>();
-    if (!w.need_rebuild_ && w.position_at_build_.size() != w.bodies.size())
+    if (reference_missing)
         in.fail("the neighbour-list reference positions do not match the bodies");
     if (w.prepared_ && (w.k_trans_.size() != w.bodies.size() || w.k_rot_.size() != w.bodies.size()))
         in.fail("the stiffness sums do not match the bodies");
@@ -722,7 +726,7 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
     load_scalars(w, in);
     load_bodies(w.bodies, in);
     for (int g : w.bodies.group)
-        if (g < 0 || std::size_t(g) >= w.groups_.size()) in.fail("a body has group index " + std::to_string(g));
+        if (g < 0 || g >= w.assignment_.group_count()) in.fail("a body has group index " + std::to_string(g));
     load_walls(w.walls, w, in);
     load_fields(w, in);
     load_contacts(w, in);

@@ -1,4 +1,4 @@
-#include "walls.hpp"
+#include "bodies/walls.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -1,12 +1,12 @@
 // Packing and unpacking of ball–ball rows for a model whose pair force acts
 // between the particle centres (PLAB_MODEL_FORCE_AT_CENTRES, abi.h: SPH).
-// The dense batch of dense_batch.hpp without what such a model never uses:
+// The dense batch of forces/packed_batch.hpp without what such a model never uses:
 // no spin terms in the relative velocity, no moments r x F, no stiffness or
 // energy columns cleared or read back. The rows reach the model through the
 // same DenseBatch, bind_rows() and call_model_dense(); the force sums go to
 // the chunks' partials in row order, as unpack_rows() does, so results do
 // not depend on the thread count.
-#include "dense_batch.hpp"
+#include "forces/packed_batch.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -84,8 +84,8 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
                                std::size_t begin, const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);
-    double* fm = partial_fm_.data() + ch.offset;  // body i at width * (i - lo): forces only (Chunk::forces_only)
-    const std::size_t width = slot_width(true);
+    double* fm = sums_.slots(ch);  // body i at width * (i - lo): forces only (Chunk::forces_only)
+    const std::size_t width = slot_doubles(dim, true);
     const bool with_z = dim == 3;  // (2D slots: fx, fy)
     const std::int32_t lo = ch.lo;
     write_forces(s, d, contact_forces_kept_);  // (point and normal: recomputed on demand, the set is packed)

@@ -1,0 +1,65 @@
+#include "contacts/contact_set.hpp"
+
+#include "common/buffers.hpp"
+
+namespace plab {
+
+bool ContactSet::keeps(std::uint32_t io_bit) const {
+    if (!packed) return true;
+    // no moment, no stiffness; step limits per batch (World::batch_limits_)
+    if (model_flags & PLAB_MODEL_FORCE_AT_CENTRES) return false;
+    const bool written = !(model_io & PLAB_IO_DECLARED) || (model_io & io_bit);
+    return io_bit == 0 || written;
+}
+
+void ContactSet::resize_columns(std::size_t n, int n_acc) {
+    forces_zero = false;  // (dt_limit below holds zeros, not kInf)
+    fill(active, n, std::uint8_t(0));
+    fill(interior, with_wall ? n : 0, std::uint8_t(1));
+    fill(force, 3 * n, 0.0);
+    // outputs the model writes; the others not kept at all (keeps())
+    const struct { std::vector<double>* col; std::size_t width; std::uint32_t bit; } outputs[] = {
+        {&moment1, 3, PLAB_IO_MOMENTS}, {&moment2, 3, PLAB_IO_MOMENTS}, {&k_t, 1, 0},
+        {&k_r, 1, PLAB_IO_STIFFNESS_ROTATIONAL}, {&dt_limit, 1, PLAB_IO_DT_LIMIT}};
+    for (const auto& o : outputs) {
+        if (keeps(o.bit)) fill(*o.col, o.width * n, 0.0);
+        else release(*o.col);
+    }
+    // what only the model reads, or only per-batch sums need: none when packed
+    const std::size_t m = packed ? 0 : n;
+    for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity}) fill(*v, 3 * m, 0.0);
+    for (auto* v : {&gap, &distance, &radius1, &radius2, &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip,
+                    &dashpot, &break_energy})
+        fill(*v, m, 0.0);
+    if (packed)  // not kept at all
+        for (auto* v : {&normal, &point, &rel_velocity, &rel_angular_velocity, &gap, &distance, &radius1, &radius2,
+                        &mass1, &mass2, &eff_mass, &eff_radius, &strain, &slip, &dashpot, &break_energy})
+            release(*v);
+    acc1.resize(std::size_t(n_acc));
+    acc2.resize(std::size_t(n_acc));
+    for (auto* acc : {&acc1, &acc2})
+        for (auto& a : *acc) fill(a, n, 0.0);
+}
+
+std::vector<std::pair<const char*, std::vector<double>*>> ContactSet::double_columns() {
+    return {{"normal", &normal}, {"gap", &gap}, {"distance", &distance}, {"rel_velocity", &rel_velocity},
+            {"rel_angular_velocity", &rel_angular_velocity}, {"point", &point}, {"radius1", &radius1},
+            {"radius2", &radius2}, {"mass1", &mass1}, {"mass2", &mass2}, {"eff_mass", &eff_mass},
+            {"eff_radius", &eff_radius}, {"force", &force}, {"moment1", &moment1}, {"moment2", &moment2},
+            {"strain", &strain}, {"slip", &slip}, {"dashpot", &dashpot}, {"k_t", &k_t}, {"k_r", &k_r},
+            {"dt_limit", &dt_limit}, {"break_energy", &break_energy}};
+}
+
+void ContactSet::release_columns() {
+    release(active);
+    // a wall set's normal and interior flags say which face of a facet each
+    // row's ball is on: install_pairs() carries them to the new rows
+    if (!with_wall) release(interior);
+    for (auto& [name, col] : double_columns())
+        if (!with_wall || col != &normal) release(*col);
+    release(batch_energy);
+    for (auto* acc : {&acc1, &acc2})
+        for (auto& a : *acc) release(a);
+}
+
+} // namespace plab
