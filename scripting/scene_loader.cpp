@@ -303,7 +303,7 @@ void Simulation::check_calibrated_lattice(const Node& cal, const LatticeCells& c
 // the domain is the scene's `domain` when it has one.
 void Simulation::load_stability(const Node& n) {
     n.allow_keys({"enabled", "energy_gain", "domain_margin"});
-    StabilityLimits& s = world_->stability;
+    StabilityLimits& s = world_->stability_limits();
     if (n.has("enabled")) s.enabled = n.at("enabled").boolean();
     s.energy_gain = n.number_or("energy_gain", s.energy_gain, 0.0, kInf, true, true);
     s.domain_margin = n.number_or("domain_margin", s.domain_margin, 0.0, kInf, false, true);

@@ -547,7 +547,7 @@ void WorldCheckpoint::save_log(const World& w, CheckpointWriter& out) {
     // the detector compares the energy balance with the one at the last
     // change of the scene: without it a restart would see a jump (issue 7)
     out.section("stability");
-    const auto& b = w.baseline_;
+    const auto& b = w.detector_.baseline;
     for (double v : {b.balance, b.body, b.boundary, b.dissipated, b.stored, b.potential, b.max_work}) out.f64(v);
     out.vec(b.lo);
     out.vec(b.hi);
@@ -698,11 +698,11 @@ void WorldCheckpoint::load_log(World& w, CheckpointReader& in) {
     if (in.u64() != 0) in.fail("it holds random-number generator states this build has no use for");
 
     if (in.format() < 2) {  // no detector baseline saved: measure it at this state
-        w.set_stability_baseline();
+        w.detector_.measure_baseline(w.energies, w.bodies, w.walls, w.gravity);
         return;
     }
     in.section("stability");
-    auto& b = w.baseline_;
+    auto& b = w.detector_.baseline;
     for (double* v : {&b.balance, &b.body, &b.boundary, &b.dissipated, &b.stored, &b.potential, &b.max_work})
         *v = in.f64();
     b.lo = in.vec();

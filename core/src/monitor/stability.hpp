@@ -6,7 +6,11 @@
 // diagnostic buffer (abi.h, ABI 2).
 #pragma once
 
+#include "bodies/bodies.hpp"
+#include "bodies/walls.hpp"
 #include "common/types.hpp"
+#include "contacts/assignment.hpp"
+#include "monitor/energies.hpp"
 
 #include <string>
 
@@ -41,6 +45,27 @@ struct Diagnostic {
         return "unstable: " + quantity + " at step " + std::to_string(step) + " (t = " + std::to_string(time) +
                " s): " + subject + ": " + detail + "; likely cause: " + cause;
     }
+};
+
+// The energy balance and domain the detector compares with, measured at the
+// last change of the scene: a `set velocity` adds kinetic energy that no
+// force did work for, and is not an instability.
+struct StabilityBaseline {
+    double balance = 0, body = 0, boundary = 0, dissipated = 0, stored = 0, potential = 0, max_work = 0;
+    Vec lo = Vec::Constant(-kInf), hi = Vec::Constant(kInf);
+};
+
+// The generic checks, each a Diagnostic with an empty quantity when it
+// passes. The overlap check reads the contact tables (World::check_overlaps).
+class InstabilityDetector {
+public:
+    StabilityLimits limits;
+    StabilityBaseline baseline;
+    void measure_baseline(const Energies& energies, const Bodies& bodies, const Walls& walls, const Vec& gravity);
+    // The first ball outside the domain or not finite (the drift flags that one is).
+    Diagnostic domain_check(const Bodies& bodies, const AssignmentTable& groups) const;
+    // Energy from nowhere (it keeps the largest work done since the baseline).
+    Diagnostic energy_check(const Energies& energies, const Bodies& bodies, const AssignmentTable& groups);
 };
 
 } // namespace plab

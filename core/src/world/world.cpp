@@ -156,7 +156,7 @@ void World::prepare() {
     sum_energies(0.0);  // states (kinetic, strain) at this instant; no flow
     last_dt = dt;
     prepared_ = true;
-    set_stability_baseline();
+    detector_.measure_baseline(energies, bodies, walls, gravity);
     stopped = Diagnostic{};  // a run that goes on after a stop is running again
 }
 
@@ -382,8 +382,8 @@ void World::force_pass(double closing_kick) {
 DriftInputs World::drift_inputs() const {
     DriftInputs in;
     in.gravity = gravity;
-    in.lo = baseline_.lo;
-    in.hi = baseline_.hi;
+    in.lo = detector_.baseline.lo;
+    in.hi = detector_.baseline.hi;
     in.position_at_build = &neighbours_.position_at_build();
     const int cx = fields.index(PLAB_DRIFT_CORRECTION_X), cy = fields.index(PLAB_DRIFT_CORRECTION_Y),
               cz = fields.index(PLAB_DRIFT_CORRECTION_Z);

@@ -46,20 +46,6 @@ struct PassInstance {
     std::vector<int> fields;
 };
 
-// Cumulative energies (J), PFC's energy bookkeeping. With no damping and no
-// friction kinetic + strain - body - boundary stays constant.
-struct Energies {
-    double kinetic = 0;       // state: translational + rotational
-    double strain = 0;        // state: stored in contact springs
-    double body = 0;          // work done by gravity
-    double boundary = 0;      // work done by walls, applied loads and fixed velocities
-    double slip = 0;          // dissipated by friction
-    double dashpot = 0;       // dissipated by contact dashpots
-    double local_damping = 0; // dissipated by local and viscous body damping
-    double bond_break = 0;    // elastic energy released by breaking bonds
-    double balance() const { return kinetic + strain - body - boundary + slip + dashpot + local_damping + bond_break; }
-};
-
 // A bond that broke (thesis §3.3.3): where, when, and in which mode.
 struct BondBreak {
     std::uint64_t step = 0;
@@ -174,8 +160,8 @@ public:
     // failed (until the next step).
     bool at_last_good() const { return at_last_good_; }
 
-    // ---- the instability detector (stability.cpp) ----
-    StabilityLimits stability;
+    // ---- the instability detector (monitor/stability.hpp) ----
+    StabilityLimits& stability_limits() { return detector_.limits; }
     Diagnostic stopped;  // what stopped the last step (quantity empty: nothing)
 
     // ---- measurements ----
@@ -302,16 +288,9 @@ private:
     } snapshot_;
     bool at_last_good_ = false;
     StableStep snapshot_stable_;  // stable step at the last good state, for the likely cause
-    // the energy balance and domain the detector compares with (stability.cpp)
-    struct StabilityBaseline {
-        double balance = 0, body = 0, boundary = 0, dissipated = 0, stored = 0, potential = 0, max_work = 0;
-        Vec lo = Vec::Constant(-kInf), hi = Vec::Constant(kInf);
-    } baseline_;
+    InstabilityDetector detector_;
     bool left_domain_ = false;  // a position left the domain or is not finite (the leapfrog's drift)
-    void set_stability_baseline();
     void detect_instability();
-    void check_domain_and_finite();
-    void check_energy();
     void check_overlaps();
     void overlap_stop(const ModelInstance& inst, const ContactSet& s);
     std::string contact_name(const ModelInstance& inst, const ContactSet& s, std::size_t k) const;
