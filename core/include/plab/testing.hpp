@@ -72,7 +72,7 @@ public:
         const int32_t e1 = 0, e2 = 1;
         const uint8_t active = gap <= d_->activity_range(props_.data()) ? 1 : 0;
         out_ = Outputs{};
-        plab_contact_batch b{};
+        plab_contact_batch b{sizeof(plab_contact_batch)};
         b.dim = uint32_t(dim); b.count = 1; b.end2_is_wall = wall ? 1u : 0u;
         b.history_stride = d_->history_count; b.dt = dt;
         b.end1 = &e1; b.end2 = &e2; b.active = &active;
