@@ -45,10 +45,12 @@ public:
     int find(const Node& n) const;
 
     // Fills `values` (in the declaration order of `props`) for the keys that
-    // `owner.properties` does not give: from the given materials, then from
-    // the scene gravity for gravity_x/y/z. Explicit values must agree.
-    void fill(const Node& owner, const std::vector<int>& materials, const plab_property_desc* props,
-              uint32_t count, const Vec& gravity, std::vector<double>& values);
+    // `owner.properties` does not give: from the materials of each side of
+    // a contact rule (`sides`: one or two lists of material indices; a pass
+    // has one), which must agree, then from the scene gravity for gravity_x/y/z. Explicit values must
+    // agree. `groups`: the scene's group names, for group properties.
+    void fill(const Node& owner, const std::vector<std::vector<int>>& sides, const plab_property_desc* props,
+              uint32_t count, const Vec& gravity, const std::vector<std::string>& groups, std::vector<double>& values);
     // A key of a material that no user declared: an error naming its path.
     void check_all_used() const;
     // Per material with a speed of sound: its value, the rule that set it
