@@ -175,6 +175,31 @@ int Materials::find(const Node& n) const {
     n.fail("unknown material \"" + name + "\"; materials in this scene: " + (known.empty() ? "none" : known));
 }
 
+namespace {
+// The value a contact between two materials takes from their values a and b
+// by the property's mixing rule (abi.h PLAB_MIX_*); NaN for none.
+double mix(uint32_t rule, double a, double b) {
+    switch (rule) {
+    case PLAB_MIX_HARMONIC: return a + b == 0.0 ? 0.0 : 2.0 * a * b / (a + b);
+    case PLAB_MIX_ARITHMETIC: return 0.5 * (a + b);
+    case PLAB_MIX_GEOMETRIC: return a * b < 0.0 ? std::nan("") : std::sqrt(a * b);
+    case PLAB_MIX_MAX: return std::max(a, b);
+    case PLAB_MIX_MIN: return std::min(a, b);
+    default: return std::nan("");
+    }
+}
+const char* mix_formula(uint32_t rule) {
+    switch (rule) {
+    case PLAB_MIX_HARMONIC: return "harmonic mean 2ab/(a+b)";
+    case PLAB_MIX_ARITHMETIC: return "arithmetic mean (a+b)/2";
+    case PLAB_MIX_GEOMETRIC: return "geometric mean sqrt(ab)";
+    case PLAB_MIX_MAX: return "max(a, b)";
+    case PLAB_MIX_MIN: return "min(a, b)";
+    default: return "none";
+    }
+}
+} // namespace
+
 void Materials::fill(const Node& owner, const std::vector<std::vector<int>>& sides, const plab_property_desc* props,
                      uint32_t count, const Vec& gravity, const std::vector<std::string>& groups,
                      std::vector<double>& values) {
@@ -211,11 +236,26 @@ void Materials::fill(const Node& owner, const std::vector<std::vector<int>>& sid
                 side[s] = {true, x, v.path()};
             }
         if (side[0].set && side[1].set && !same_value(side[0].x, side[1].x)) {
+            // a contact between two materials: the property's mixing rule
+            const uint32_t rule = props[p].mixing;
+            const std::string a = property_value_text(props[p], side[0].x, groups) + " at " + side[0].path;
+            const std::string b = property_value_text(props[p], side[1].x, groups) + " at " + side[1].path;
             std::ostringstream msg;
-            msg << "the groups of this rule have different values of " << key << ": "
-                << property_value_text(props[p], side[0].x, groups) << " at " << side[0].path << " and "
-                << property_value_text(props[p], side[1].x, groups) << " at " << side[1].path;
-            owner.fail(msg.str());
+            if (rule == PLAB_MIX_NONE) {
+                msg << "the groups of this rule have different values of " << key << ": " << a << " and " << b << "; "
+                    << key << " has no mixing rule (mixing none: plab plugins --describe shows each property's), so "
+                    << "the two materials must agree, or " << key << " must leave them and be given in the rule's "
+                    << "properties";
+                owner.fail(msg.str());
+            }
+            const double x = mix(rule, side[0].x, side[1].x);
+            if (!in_range(props[p], x)) {
+                msg << "the " << mix_formula(rule) << " of " << key << " from " << a << " and " << b << " is "
+                    << number_text(x) << ", outside the valid range " << range_text(props[p]);
+                owner.fail(msg.str());
+            }
+            values[p] = x;
+            continue;
         }
         if (side[1].set) values[p] = side[1].x;
         else if (side[0].set) values[p] = side[0].x;
