@@ -198,6 +198,7 @@ TEST_CASE("delta-SPH diffuses a density spike and conserves the fluid volume to 
     scene["contact_models"].erase(1);  // no boundary in this scene
     scene["passes"].erase(2);
     scene["materials"]["water"]["groups"] = {"fluid"};
+    for (int p : {0, 1}) scene["passes"][p]["properties"]["boundary_group"] = nullptr;
     Simulation sim(scene);
     sim.set_quiet(true);
     World& w = sim.world();
