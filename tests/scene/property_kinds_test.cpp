@@ -6,6 +6,7 @@
 
 #include <plab_core/error.hpp>
 #include <plab_core/plugin_host.hpp>
+#include <plab/testing.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -205,4 +206,41 @@ TEST_CASE("a description smaller than this host's struct is refused, naming the 
                         Contains("bytes (its `size`), smaller than the") && Contains("plab_contact_model_desc") &&
                         Contains("rebuild it against this ParticleLab's headers"));
     CHECK(host.model("small_desc") == nullptr);
+}
+
+// The SDK's Probe (plab/testing.hpp) takes a choice by its name's index and
+// refuses a value the kind cannot take, as the loader does.
+
+namespace {
+constexpr const char* probe_modes[] = {"off", "on", "twice"};
+struct ModeSpring {
+    static constexpr const char* name = "mode_spring";
+    static constexpr const char* doc = "test";
+    static constexpr const char* timestep_rule = "sqrt(m/k)";
+    static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    static constexpr plab_property_desc properties[] = {
+        plab::prop::choice("mode", "spring mode", probe_modes, 1, "off, on, twice"),
+        plab::prop::boolean("flip", "flip", false, "negate the force"),
+    };
+    static double activity_range(const double*) { return 0.0; }
+    explicit ModeSpring(const double* p) : mode(p[0]), flip(p[1] != 0) {}
+    void law(const plab::Contact& c) const {
+        c.set_force((flip ? -1.0 : 1.0) * mode * 1e5 * c.overlap() * c.normal());
+        c.set_stiffness(1e5);
+    }
+    double mode;
+    bool flip;
+};
+} // namespace
+
+TEST_CASE("the SDK probe takes a choice by name and refuses a value its kind cannot take", "[sdk][kinds]") {
+    const plab_contact_model_desc* d = plab::contact_model_desc<ModeSpring>();
+    CHECK(d->size == sizeof(plab_contact_model_desc));
+    CHECK(d->properties[0].size == sizeof(plab_property_desc));
+    CHECK(plab::testing::choice_index(d, "mode", "twice") == 2);
+    plab::testing::Probe p(d, {{"mode", plab::testing::choice_index(d, "mode", "twice")}});
+    CHECK(p.force(-1e-4).x == Approx(2 * 1e5 * 1e-4));
+    CHECK_THROWS_WITH(plab::testing::choice_index(d, "mode", "thrice"), Contains("'thrice' is not a choice of property 'mode'"));
+    CHECK_THROWS_WITH(plab::testing::Probe(d, {{"mode", 3}}), Contains("is not a value property 'mode' can take"));
+    CHECK_THROWS_WITH(plab::testing::Probe(d, {{"flip", 0.5}}), Contains("property 'flip'"));
 }
