@@ -82,7 +82,7 @@ struct Columns {
     }
 
     plab_contact_batch batch(std::size_t o, std::size_t m) {
-        plab_contact_batch b{};
+        plab_contact_batch b{sizeof(plab_contact_batch)};
         b.dim = 3;
         b.count = std::uint32_t(m);
         b.history_stride = 3;

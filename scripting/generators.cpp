@@ -371,21 +371,109 @@ std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimit
     return type == "lattice" ? lattice(n, w, limits, cells) : random_fill(n, w, limits);
 }
 
-double read_property(const Node& v, const plab_property_desc& d) {
-    // dimensionless properties have the unit "1": leave it out of messages
-    const std::string unit = std::string(d.unit) == "1" ? "" : " " + std::string(d.unit);
-    if (!v.value().is_number()) v.fail("expected a number in " + range_text(d) + unit + ", got " + show(v.value()));
-    const double x = v.value().get<double>();
-    if (!in_range(d, x)) {
-        std::ostringstream s;
-        s << "value " << x << " of " << d.name << " is outside the valid range " << range_text(d) << unit;
-        v.fail(s.str());
+namespace {
+
+std::string list_text(const std::vector<std::string>& names) {
+    std::string s;
+    for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+    return s.empty() ? "none" : s;
+}
+
+std::vector<std::string> choice_names(const plab_property_desc& d) {
+    std::vector<std::string> names;
+    for (uint32_t c = 0; c < d.choice_count; ++c) names.push_back(d.choices[c]);
+    return names;
+}
+
+// A JSON number that is a whole number, as a long (for old numeric codes).
+bool whole_number(const json& j, long& out) {
+    if (!j.is_number()) return false;
+    const double x = j.get<double>();
+    if (!std::isfinite(x) || std::floor(x) != x || std::fabs(x) > 1e15) return false;
+    out = long(x);
+    return true;
+}
+
+std::string groups_text(const std::vector<std::string>& groups) { return "groups in this scene: " + list_text(groups); }
+
+} // namespace
+
+double read_property(const Node& v, const plab_property_desc& d, const std::vector<std::string>& groups) {
+    const json& j = v.value();
+    long code = 0;
+    switch (d.kind) {
+    case PLAB_KIND_BOOL:
+        if (j.is_boolean()) return j.get<bool>() ? 1.0 : 0.0;
+        if (whole_number(j, code) && (code == 0 || code == 1))
+            v.fail(show(j) + " is a numeric code; write " + (code ? "true" : "false") + " (" + d.name + ": true or false)");
+        v.fail(show(j) + " is not true or false (" + d.name + "); use true or false");
+    case PLAB_KIND_CHOICE: {
+        const std::vector<std::string> names = choice_names(d);
+        if (j.is_string()) {
+            const std::string s = j.get<std::string>();
+            for (std::size_t c = 0; c < names.size(); ++c)
+                if (names[c] == s) return double(c);
+            v.fail(show(j) + " is not one of " + list_text(names) + " (" + d.name + ")");
+        }
+        if (whole_number(j, code) && code >= 0 && code < long(names.size()))
+            v.fail(show(j) + " is a numeric code; write \"" + names[std::size_t(code)] + "\" (" + d.name + ": one of " +
+                   list_text(names) + ")");
+        v.fail(show(j) + " is not one of " + list_text(names) + " (" + d.name + "; write the name, in quotes)");
     }
-    return x;
+    case PLAB_KIND_GROUP: {
+        const bool none_allowed = d.flags & PLAB_GROUP_NONE_ALLOWED;
+        if (j.is_null() || (j.is_string() && j.get<std::string>() == "none")) {
+            if (none_allowed) return -1.0;
+            v.fail(show(j) + ": " + d.name + " must name a group; " + groups_text(groups));
+        }
+        if (j.is_string()) {
+            const std::string s = j.get<std::string>();
+            for (std::size_t g = 0; g < groups.size(); ++g)
+                if (groups[g] == s) return double(g);
+            v.fail(show(j) + " is not a group of this scene (" + d.name + "); " + groups_text(groups) +
+                   (none_allowed ? ", or null for none" : ""));
+        }
+        if (whole_number(j, code) && code >= 0 && code < long(groups.size()))
+            v.fail(show(j) + " is a numeric code (a group index); write \"" + groups[std::size_t(code)] + "\" (" +
+                   d.name + ": a group name; " + groups_text(groups) + ")");
+        if (whole_number(j, code) && code == -1 && none_allowed)
+            v.fail(show(j) + " is a numeric code; write null for none (" + d.name + ")");
+        v.fail(show(j) + " is not a group name (" + d.name + "); " + groups_text(groups) +
+               (none_allowed ? ", or null for none" : ""));
+    }
+    default: {
+        // dimensionless properties have the unit "1": leave it out of messages
+        const std::string unit = std::string(d.unit) == "1" ? "" : " " + std::string(d.unit);
+        if (!j.is_number()) v.fail("expected a number in " + range_text(d) + unit + ", got " + show(j));
+        const double x = j.get<double>();
+        std::ostringstream s;
+        if (d.kind == PLAB_KIND_INTEGER && std::isfinite(x) && std::floor(x) != x) {
+            s << "value " << x << " of " << d.name << " is not a whole number; valid: " << range_text(d) << unit;
+            v.fail(s.str());
+        }
+        if (!in_range(d, x)) {
+            s << "value " << x << " of " << d.name << " is outside the valid range " << range_text(d) << unit;
+            v.fail(s.str());
+        }
+        return x;
+    }
+    }
+}
+
+std::string property_value_text(const plab_property_desc& d, double value, const std::vector<std::string>& groups) {
+    switch (d.kind) {
+    case PLAB_KIND_BOOL: return value != 0.0 ? "true" : "false";
+    case PLAB_KIND_CHOICE:
+        return value >= 0 && value < double(d.choice_count) ? d.choices[std::size_t(value)] : short_number(value);
+    case PLAB_KIND_GROUP:
+        if (value < 0) return "none";
+        return value < double(groups.size()) ? groups[std::size_t(value)] : short_number(value);
+    default: return short_number(value);
+    }
 }
 
 std::vector<double> read_properties(const Node& owner, const plab_property_desc* props, uint32_t count,
-                                    const std::string& what) {
+                                    const std::string& what, const std::vector<std::string>& groups) {
     std::vector<double> values(count);
     for (uint32_t p = 0; p < count; ++p) values[p] = props[p].default_value;
     if (!owner.has("properties")) return values;
@@ -400,9 +488,19 @@ std::vector<double> read_properties(const Node& owner, const plab_property_desc*
             for (uint32_t q = 0; q < count; ++q) known += (known.empty() ? "" : ", ") + std::string(props[q].key);
             v.fail("unknown property '" + it.key() + "' of " + what + "; its properties: " + (known.empty() ? "none" : known));
         }
-        values[p] = read_property(v, props[p]);
+        values[p] = read_property(v, props[p], groups);
     }
     return values;
+}
+
+void check_required_properties(const Node& owner, const plab_property_desc* props, uint32_t count,
+                               const std::vector<double>& values, const std::string& what,
+                               const std::vector<std::string>& groups) {
+    for (uint32_t p = 0; p < count; ++p)
+        if (props[p].kind == PLAB_KIND_GROUP && !(props[p].flags & PLAB_GROUP_NONE_ALLOWED) && values[p] < 0)
+            throw InputError(owner.path() + ".properties." + props[p].key,
+                             std::string("missing: ") + what + " needs " + props[p].name + " named; " +
+                                 groups_text(groups));
 }
 
 } // namespace plab

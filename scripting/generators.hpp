@@ -65,12 +65,24 @@ void generate_wall(const Node& n, World& w);
 // Refuses two facets in the same place (the walls at `walls`, by index).
 void check_coincident_facets(const Node& walls, const World& w);
 
-// Property values in declaration order: scene values checked against the
-// declared range, defaults for the rest; an unknown key lists the known ones.
+// Property values in declaration order, as the plug-in sees them: scene
+// values checked by kind (abi.h PLAB_KIND_*: a number in its range, a whole
+// number, true/false, a choice's name, a group's name from `groups`, the
+// scene's group names in index order), defaults for the rest; an unknown key
+// lists the known ones. Refusals name the JSON path, the value and the valid
+// set; an old numeric code of a bool, choice or group names its spelling.
 std::vector<double> read_properties(const Node& owner, const plab_property_desc* props, uint32_t count,
-                                    const std::string& what);
-// One property value checked against its declared range.
-double read_property(const Node& v, const plab_property_desc& d);
+                                    const std::string& what, const std::vector<std::string>& groups);
+// One property value checked by its kind.
+double read_property(const Node& v, const plab_property_desc& d, const std::vector<std::string>& groups);
+// A group property that must name a group and still holds -1 once the scene
+// and the materials are read: an error at owner.properties.KEY.
+void check_required_properties(const Node& owner, const plab_property_desc* props, uint32_t count,
+                               const std::vector<double>& values, const std::string& what,
+                               const std::vector<std::string>& groups);
+// The value as a scene writes it: a number, true/false, a choice's name, a
+// group's name or "none".
+std::string property_value_text(const plab_property_desc& d, double value, const std::vector<std::string>& groups);
 
 // Degrees of freedom named in a "fix" list ("x", "y", "z", "rx", "ry", "rz",
 // "translation", "rotation", "all").

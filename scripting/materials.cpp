@@ -4,6 +4,8 @@
 
 #include "generators.hpp"
 
+#include <host/plugin_host.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -147,9 +149,13 @@ void Materials::load(const Node& n, const World& w) {
             group_material_[g] = int(materials_.size());
             mat.groups.push_back(g);
         }
+        // a property value: a number, true/false, or a name (a choice or a
+        // group); the kind of the property that takes it checks it
         for (auto v = it->begin(); v != it->end(); ++v)
-            if (v.key() != "groups" && v.key() != "speed_of_sound" && v.key() != "expected_max_speed" && !v->is_number())
-                Node(*v, m.path() + "." + v.key()).fail("expected a number (a property value), got " + show(*v));
+            if (v.key() != "groups" && v.key() != "speed_of_sound" && v.key() != "expected_max_speed" &&
+                !v->is_number() && !v->is_boolean() && !v->is_string() && !v->is_null())
+                Node(*v, m.path() + "." + v.key())
+                    .fail("expected a property value (a number, true or false, or a name), got " + show(*v));
         resolve_speed_of_sound(m, w.gravity, mat);
         materials_.push_back(std::move(mat));
     }
@@ -169,35 +175,93 @@ int Materials::find(const Node& n) const {
     n.fail("unknown material \"" + name + "\"; materials in this scene: " + (known.empty() ? "none" : known));
 }
 
-void Materials::fill(const Node& owner, const std::vector<int>& materials, const plab_property_desc* props,
-                     uint32_t count, const Vec& gravity, std::vector<double>& values) {
+namespace {
+// The value a contact between two materials takes from their values a and b
+// by the property's mixing rule (abi.h PLAB_MIX_*); NaN for none.
+double mix(uint32_t rule, double a, double b) {
+    switch (rule) {
+    case PLAB_MIX_HARMONIC: return a + b == 0.0 ? 0.0 : 2.0 * a * b / (a + b);
+    case PLAB_MIX_ARITHMETIC: return 0.5 * (a + b);
+    case PLAB_MIX_GEOMETRIC: return a * b < 0.0 ? std::nan("") : std::sqrt(a * b);
+    case PLAB_MIX_MAX: return std::max(a, b);
+    case PLAB_MIX_MIN: return std::min(a, b);
+    default: return std::nan("");
+    }
+}
+const char* mix_formula(uint32_t rule) {
+    switch (rule) {
+    case PLAB_MIX_HARMONIC: return "harmonic mean 2ab/(a+b)";
+    case PLAB_MIX_ARITHMETIC: return "arithmetic mean (a+b)/2";
+    case PLAB_MIX_GEOMETRIC: return "geometric mean sqrt(ab)";
+    case PLAB_MIX_MAX: return "max(a, b)";
+    case PLAB_MIX_MIN: return "min(a, b)";
+    default: return "none";
+    }
+}
+} // namespace
+
+void Materials::fill(const Node& owner, const std::vector<std::vector<int>>& sides, const plab_property_desc* props,
+                     uint32_t count, const Vec& gravity, const std::vector<std::string>& groups,
+                     std::vector<double>& values) {
     const json* given = owner.has("properties") ? &owner.value()["properties"] : nullptr;
     for (uint32_t p = 0; p < count; ++p) {
         const std::string key = props[p].key;
         const bool explicit_value = given && given->contains(key);
-        std::string source;  // path of the value filled so far
-        for (int mi : materials) {
-            Material& m = materials_[mi];
-            if (!m.values.contains(key)) continue;
-            if (std::find(m.used.begin(), m.used.end(), key) == m.used.end()) m.used.push_back(key);
-            const Node v(m.values[key], m.path + "." + key);
-            const double x = read_property(v, props[p]);
-            std::ostringstream s;
-            if (explicit_value && !same_value(x, (*given)[key].get<double>())) {
-                s << "value " << (*given)[key].get<double>() << " contradicts " << x << " of " << v.path()
-                  << "; state it once, in the material";
-                throw InputError(owner.path() + ".properties." + key, s.str());
+        // per side of the rule: the value its materials give, and where
+        struct Stated {
+            bool set = false;
+            double x = 0;
+            std::string path;
+        } side[2];
+        for (std::size_t s = 0; s < sides.size() && s < 2; ++s)
+            for (int mi : sides[s]) {
+                Material& m = materials_[mi];
+                if (!m.values.contains(key)) continue;
+                if (std::find(m.used.begin(), m.used.end(), key) == m.used.end()) m.used.push_back(key);
+                const Node v(m.values[key], m.path + "." + key);
+                const double x = read_property(v, props[p], groups);
+                std::ostringstream msg;
+                if (explicit_value && !same_value(x, values[p])) {
+                    msg << "value " << show((*given)[key]) << " contradicts " << property_value_text(props[p], x, groups)
+                        << " of " << v.path() << "; state it once, in the material";
+                    throw InputError(owner.path() + ".properties." + key, msg.str());
+                }
+                if (side[s].set && !same_value(x, side[s].x)) {
+                    msg << "the groups on one side of this rule have different values of " << key << ": "
+                        << property_value_text(props[p], side[s].x, groups) << " at " << side[s].path << " and "
+                        << property_value_text(props[p], x, groups) << " at " << v.path()
+                        << "; one value serves the whole rule: give each pair of groups its own rule";
+                    owner.fail(msg.str());
+                }
+                side[s] = {true, x, v.path()};
             }
-            if (!source.empty() && !same_value(x, values[p])) {
-                s << "the groups of this rule have different values of " << key << ": " << values[p] << " at " << source
-                  << " and " << x << " at " << v.path();
-                owner.fail(s.str());
+        if (side[0].set && side[1].set && !same_value(side[0].x, side[1].x)) {
+            // a contact between two materials: the property's mixing rule
+            const uint32_t rule = props[p].mixing;
+            const std::string a = property_value_text(props[p], side[0].x, groups) + " at " + side[0].path;
+            const std::string b = property_value_text(props[p], side[1].x, groups) + " at " + side[1].path;
+            std::ostringstream msg;
+            if (rule == PLAB_MIX_NONE) {
+                msg << "the groups of this rule have different values of " << key << ": " << a << " and " << b << "; "
+                    << key << " has no mixing rule (mixing none: plab plugins --describe shows each property's), so "
+                    << "the two materials must agree, or " << key << " must leave them and be given in the rule's "
+                    << "properties";
+                owner.fail(msg.str());
+            }
+            const double x = mix(rule, side[0].x, side[1].x);
+            if (!in_range(props[p], x)) {
+                msg << "the " << mix_formula(rule) << " of " << key << " from " << a << " and " << b << " is "
+                    << number_text(x) << ", outside the valid range " << range_text(props[p]);
+                owner.fail(msg.str());
             }
             values[p] = x;
-            source = v.path();
+            continue;
         }
+        if (side[1].set) values[p] = side[1].x;
+        else if (side[0].set) values[p] = side[0].x;
+        const bool from_material = side[0].set || side[1].set;
         const int axis = key == "gravity_x" ? 0 : key == "gravity_y" ? 1 : key == "gravity_z" ? 2 : -1;
-        if (axis < 0 || !source.empty()) continue;
+        if (axis < 0 || from_material) continue;
         if (explicit_value && !same_value(values[p], gravity[axis])) {
             std::ostringstream s;
             s << "value " << values[p] << " contradicts the component " << gravity[axis]

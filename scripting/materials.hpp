@@ -8,7 +8,11 @@
 //                           "rest_density": 1000, "speed_of_sound": 19.8, ...}}
 //
 // A contact rule takes the materials of the groups it names; a pass names
-// its material (`"material": "water"`). A value given explicitly that
+// its material (`"material": "water"`). When the two sides of a rule have
+// materials with different values of a property, the property's mixing rule
+// (abi.h PLAB_MIX_*, e.g. kn harmonic: 2 a b/(a + b)) gives the contact's
+// value; a property without one (mixing none) is then an error naming both
+// paths. A value given explicitly that
 // differs from the material's is an error naming both JSON paths; a material
 // key that no model or pass using the material declares is an error (a typo
 // would otherwise be silently ignored). Properties named gravity_x/y/z are
@@ -45,10 +49,13 @@ public:
     int find(const Node& n) const;
 
     // Fills `values` (in the declaration order of `props`) for the keys that
-    // `owner.properties` does not give: from the given materials, then from
-    // the scene gravity for gravity_x/y/z. Explicit values must agree.
-    void fill(const Node& owner, const std::vector<int>& materials, const plab_property_desc* props,
-              uint32_t count, const Vec& gravity, std::vector<double>& values);
+    // `owner.properties` does not give: from the materials of each side of
+    // a contact rule (`sides`: one or two lists of material indices; a pass
+    // has one), mixed by the property's rule where the two sides differ,
+    // then from the scene gravity for gravity_x/y/z. Explicit values must
+    // agree. `groups`: the scene's group names, for group properties.
+    void fill(const Node& owner, const std::vector<std::vector<int>>& sides, const plab_property_desc* props,
+              uint32_t count, const Vec& gravity, const std::vector<std::string>& groups, std::vector<double>& values);
     // A key of a material that no user declared: an error naming its path.
     void check_all_used() const;
     // Per material with a speed of sound: its value, the rule that set it

@@ -38,7 +38,7 @@ set_tests_properties(@NAME@_loads_in_plab PROPERTIES ENVIRONMENT PLAB_PLUGIN_PAT
 )~";
 
 const char* header_template = R"~(// `@NAME@` — a damped linear spring (start here and change the law):
-//   F_n = k d + 2 beta sqrt(m* k) (-v_n),  no tension, no tangential force.
+//   F_n = k d + 2 beta sqrt(m* k) (-v_n),  no tension unless `tension`, no tangential force.
 // docs/writing-a-contact-model.md in ParticleLab walks through every part.
 #pragma once
 
@@ -50,28 +50,37 @@ const char* header_template = R"~(// `@NAME@` — a damped linear spring (start 
 
 struct @CLASS@ {
     static constexpr const char* name = "@NAME@";
-    static constexpr const char* doc = "Damped linear normal spring, no tension (skeleton from plab new-model).";
+    static constexpr const char* doc = "Damped linear normal spring, no tension by default (skeleton from plab new-model).";
     static constexpr const char* timestep_rule = "per ball sqrt(m / sum k) over its contacts";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
 
-    // Every property: scene key, name, SI unit, default, valid range, flags, doc.
-    enum Prop : int { stiffness, damping_ratio, prop_count };
+    // Every property, by kind (plab/contact_model.hpp, plab::prop): number
+    // (scene key, name, SI unit, default, valid range, flags, doc, and how
+    // two materials' values mix in a contact between them), integer,
+    // boolean, choice (named values: the law gets the name's index) and
+    // group (a group of the scene by name: the law gets its index).
+    enum Prop : int { stiffness, damping_ratio, tension, prop_count };
     static constexpr plab_property_desc properties[] = {
-        {"k", "normal stiffness", "N/m", 1e6, 0.0, std::numeric_limits<double>::infinity(),
-         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "F_n = k d"},
-        {"beta", "critical damping ratio", "1", 0.0, 0.0, 1.0, PLAB_MAX_EXCLUSIVE, "dashpot 2 beta sqrt(m* k)"},
+        plab::prop::number("k", "normal stiffness", "N/m", 1e6, 0.0, std::numeric_limits<double>::infinity(),
+                           PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "F_n = k d",
+                           PLAB_MIX_HARMONIC),  // two materials' k1, k2: 2 k1 k2 / (k1 + k2)
+        plab::prop::number("beta", "critical damping ratio", "1", 0.0, 0.0, 1.0, PLAB_MAX_EXCLUSIVE,
+                           "dashpot 2 beta sqrt(m* k)", PLAB_MIX_ARITHMETIC),
+        plab::prop::boolean("tension", "dashpot may pull", false,
+                            "false: the normal force is kept >= 0; true: the dashpot may pull the balls together"),
     };
 
     // Active while the balls touch (surface gap <= 0).
     static double activity_range(const double*) { return 0.0; }
 
-    explicit @CLASS@(const double* p) : k_(p[stiffness]), beta_(p[damping_ratio]) {}
+    explicit @CLASS@(const double* p) : k_(p[stiffness]), beta_(p[damping_ratio]), tension_(p[tension] != 0) {}
 
     // The law for one contact; the adapter loops it over the host's batch.
     void law(const plab::Contact& c) const {
         const plab::Vec3 n = c.normal();  // from end 1 to end 2
         const double vn = dot(c.rel_velocity(), n);
-        const double fn = std::max(0.0, k_ * c.overlap() - 2.0 * beta_ * std::sqrt(c.eff_mass() * k_) * vn);
+        const double f = k_ * c.overlap() - 2.0 * beta_ * std::sqrt(c.eff_mass() * k_) * vn;
+        const double fn = tension_ ? f : std::max(0.0, f);
         c.set_force(fn * n);                           // the force on end 2
         c.set_strain_energy(0.5 * k_ * c.overlap() * c.overlap());
         c.set_stiffness(k_);                           // the host's stable step sqrt(m/k)
@@ -79,6 +88,7 @@ struct @CLASS@ {
 
 private:
     double k_, beta_;
+    bool tension_;
 };
 )~";
 
@@ -125,7 +135,7 @@ The law is `@CLASS@::law` in `@NAME@.hpp`; `@NAME@.cpp` exports it.
     PLAB_PLUGIN_PATH=$PWD/build plab plugins --describe @NAME@
 
 In a scene: `"plugins": ["@NAME@"]` and
-`{"groups": ["*", "*"], "model": "@NAME@", "properties": {"k": 1e6, "beta": 0.1}}`
+`{"groups": ["*", "*"], "model": "@NAME@", "properties": {"k": 1e6, "beta": 0.1, "tension": false}}`
 under `contact_models`, with `PLAB_PLUGIN_PATH` pointing at `build/`.
 )~";
 

@@ -243,17 +243,40 @@ double default_range(const plab_contact_model_desc& d) {
     return d.activity_range(props.data());
 }
 
+// One property for --describe: key, name, kind (a choice's names, a
+// group's "none"), unit, default, range, mixing rule, doc.
+void describe_property(const plab_property_desc& q) {
+    std::cout << "    " << q.key << "  " << q.name;
+    switch (q.kind) {
+    case PLAB_KIND_BOOL:
+        std::cout << ", bool (true | false), default " << (q.default_value != 0 ? "true" : "false");
+        break;
+    case PLAB_KIND_CHOICE: {
+        std::cout << ", choice: ";
+        for (uint32_t c = 0; c < q.choice_count; ++c) std::cout << (c ? " | " : "") << q.choices[c];
+        std::cout << ", default " << q.choices[std::size_t(q.default_value)];
+        break;
+    }
+    case PLAB_KIND_GROUP:
+        std::cout << ", group (a group name"
+                  << (q.flags & PLAB_GROUP_NONE_ALLOWED ? ", or null for none), default none" : "), required");
+        break;
+    default:
+        std::cout << " [" << q.unit << "], " << kind_name(q.kind) << ", default " << q.default_value << ", range "
+                  << range_text(q);
+    }
+    // two materials' values mix only for numbers (abi.h PLAB_MIX_*)
+    if (q.kind == PLAB_KIND_NUMBER || q.kind == PLAB_KIND_INTEGER) std::cout << ", mixing " << mixing_name(q.mixing);
+    std::cout << "\n        " << q.doc << "\n";
+}
+
 void describe(const PluginHost& host, const std::string& name) {
     if (const plab_contact_model_desc* d = host.model(name)) {
         std::cout << "contact model " << d->name << "  (" << host.library_of_model(name) << ")\n  " << d->doc << "\n"
                   << "  activity range: active while the " << (d->range_kind == PLAB_RANGE_GAP ? "surface gap" : "centre distance")
                   << " <= a value set by the properties (" << default_range(*d) << " m with the defaults)\n"
                   << "  stable timestep: " << d->timestep_rule << "\n  properties:\n";
-        for (uint32_t p = 0; p < d->property_count; ++p) {
-            const auto& q = d->properties[p];
-            std::cout << "    " << q.key << "  " << q.name << " [" << q.unit << "], default " << q.default_value
-                      << ", range " << range_text(q) << "\n        " << q.doc << "\n";
-        }
+        for (uint32_t p = 0; p < d->property_count; ++p) describe_property(d->properties[p]);
         std::cout << "  history slots:\n";
         for (uint32_t h = 0; h < d->history_count; ++h)
             std::cout << "    " << d->history[h].name << " (default " << d->history[h].default_value << ", "
@@ -263,7 +286,10 @@ void describe(const PluginHost& host, const std::string& name) {
     }
     if (const plab_pass_desc* p = host.pass(name)) {
         static const char* phases[] = {"pre-force", "post-force", "integrate", "rates-done", "pre-drift"};
-        std::cout << "pass " << p->name << " (" << phases[p->phase] << ", stage " << p->stage << ")\n  " << p->doc << "\n";
+        std::cout << "pass " << p->name << " (" << phases[p->phase] << ", stage " << p->stage << ")  ("
+                  << host.library_of_pass(name) << ")\n  " << p->doc << "\n";
+        if (p->property_count > 0) std::cout << "  properties:\n";
+        for (uint32_t q = 0; q < p->property_count; ++q) describe_property(p->properties[q]);
         for (uint32_t f = 0; f < p->field_count; ++f)
             std::cout << "  field " << p->fields[f].name << " [" << p->fields[f].unit << "]\n";
         return;
@@ -381,7 +407,7 @@ int main(int argc, char** argv) {
         return args.empty() ? 2 : 0;
     }
     if (args[0] == "--version" || args[0] == "version") {
-        std::cout << "plab " << PLAB_VERSION << " (plug-in ABI " << PLAB_ABI_VERSION << ", " << build_flags() << ")\n";
+        std::cout << "plab " << PLAB_VERSION << " (plug-in ABI " << PLAB_ABI_MAJOR << "." << PLAB_ABI_MINOR << ", " << build_flags() << ")\n";
         return 0;
     }
     const std::string cmd = args[0];

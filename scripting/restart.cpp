@@ -52,6 +52,13 @@ std::vector<PluginUse> plugins_used(const json& scene, const std::string& scene_
     return out;
 }
 
+// A plug-in ABI version as people say it: "2.0"; "1 (version 7)" for ABI 1,
+// which numbered its versions 1 to 7 (abi.h).
+std::string abi_text(std::uint32_t v) {
+    if (v >> 16 == 0) return "1 (version " + std::to_string(v) + ")";
+    return std::to_string(v >> 16) + "." + std::to_string(v & 0xffffu);
+}
+
 // Loads every plug-in the checkpoint names, or says which one is missing
 // and what the saved state needs it for.
 void load_plugins_of(CheckpointReader& in, PluginHost& host, const std::string& scene_dir) {
@@ -64,9 +71,9 @@ void load_plugins_of(CheckpointReader& in, PluginHost& host, const std::string& 
         u.abi = in.u32();
         u.provides = in.str();
         const std::string what = "plug-in '" + u.name + "' (" + (u.provides.empty() ? "no models" : u.provides) +
-                                 "; written with " + u.file + ", plug-in ABI " + std::to_string(u.abi) + ")";
+                                 "; written with " + u.file + ", plug-in ABI " + abi_text(u.abi) + ")";
         if (u.abi != PLAB_ABI_VERSION)
-            in.fail("it needs " + what + " but this plab speaks plug-in ABI " + std::to_string(PLAB_ABI_VERSION));
+            in.fail("it needs " + what + " but this plab speaks plug-in ABI " + abi_text(PLAB_ABI_VERSION));
         std::string file;
         try {
             file = host.resolve(u.name, scene_dir);

@@ -3,6 +3,7 @@
 // and what limits it, the length of each command, the outputs and their
 // size on disk.
 #include "simulation.hpp"
+#include "generators.hpp"
 
 #include "materials.hpp"
 
@@ -54,7 +55,8 @@ void print_contact_models(std::ostream& out, const World& w) {
             const ModelInstance& m = *w.instances()[std::size_t(k)];
             out << "  " << w.group_names()[a] << " - " << w.group_names()[b] << ": " << m.model;
             for (std::size_t p = 0; p < m.props.size(); ++p)
-                out << (p ? ", " : " (") << m.desc->properties[p].key << " " << short_number(m.props[p]) << (p + 1 == m.props.size() ? ")" : "");
+                out << (p ? ", " : " (") << m.desc->properties[p].key << " "
+                    << property_value_text(m.desc->properties[p], m.props[p], w.group_names()) << (p + 1 == m.props.size() ? ")" : "");
             out << "\n";
         }
 }

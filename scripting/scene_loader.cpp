@@ -192,12 +192,15 @@ void Simulation::load_contact_models(const Node& n) {
                                       (names.empty() ? std::string("none (list plug-ins under \"plugins\")") : join(names)) +
                                       ", or \"null\" for no contact");
             }
-            // the rule's materials: those of the groups it names (materials.hpp)
-            std::vector<int> mats;
-            for (const auto& side : sides)
-                for (int g : side)
-                    if (const int m = materials_->of_group(g); m >= 0 && std::find(mats.begin(), mats.end(), m) == mats.end())
-                        mats.push_back(m);
+            // the rule's materials: those of the groups it names, per side
+            // (materials.hpp: two sides of different materials mix)
+            std::vector<std::vector<int>> mats(2);
+            for (int s = 0; s < 2; ++s)
+                for (int g : sides[s])
+                    if (const int m = materials_->of_group(g);
+                        m >= 0 && std::find(mats[s].begin(), mats[s].end(), m) == mats[s].end())
+                        mats[s].push_back(m);
+            const std::vector<std::string>& groups = w.group_names();
             if (rule.has("calibrate")) {
                 // calibrated values first; explicit properties override them
                 const Node cal = rule.at("calibrate");
@@ -208,12 +211,15 @@ void Simulation::load_contact_models(const Node& n) {
                 if (rule.has("properties")) props.update(rule.value()["properties"]);
                 merged["properties"] = props;
                 const Node merged_rule(merged, rule.path());
-                std::vector<double> values = read_properties(merged_rule, d->properties, d->property_count, "model " + model);
-                materials_->fill(merged_rule, mats, d->properties, d->property_count, w.gravity, values);
+                std::vector<double> values =
+                    read_properties(merged_rule, d->properties, d->property_count, "model " + model, groups);
+                materials_->fill(merged_rule, mats, d->properties, d->property_count, w.gravity, groups, values);
+                check_required_properties(merged_rule, d->properties, d->property_count, values, "model " + model, groups);
                 instance = w.add_instance(model, std::move(values));
             } else {
-                std::vector<double> values = read_properties(rule, d->properties, d->property_count, "model " + model);
-                materials_->fill(rule, mats, d->properties, d->property_count, w.gravity, values);
+                std::vector<double> values = read_properties(rule, d->properties, d->property_count, "model " + model, groups);
+                materials_->fill(rule, mats, d->properties, d->property_count, w.gravity, groups, values);
+                check_required_properties(rule, d->properties, d->property_count, values, "model " + model, groups);
                 instance = w.add_instance(model, std::move(values));
             }
         } else if (rule.has("properties")) {
@@ -323,10 +329,12 @@ void Simulation::load_passes(const Node& n) {
             p.at("name").fail("unknown pass \"" + name + "\"; passes loaded by this scene's plugins: " +
                               (names.empty() ? std::string("none") : join(names)));
         }
-        std::vector<double> values = read_properties(p, d->properties, d->property_count, "pass " + name);
-        std::vector<int> mats;
-        if (p.has("material")) mats.push_back(materials_->find(p.at("material")));
-        materials_->fill(p, mats, d->properties, d->property_count, world_->gravity, values);
+        const std::vector<std::string>& groups = world_->group_names();
+        std::vector<double> values = read_properties(p, d->properties, d->property_count, "pass " + name, groups);
+        std::vector<std::vector<int>> mats(1);
+        if (p.has("material")) mats[0].push_back(materials_->find(p.at("material")));
+        materials_->fill(p, mats, d->properties, d->property_count, world_->gravity, groups, values);
+        check_required_properties(p, d->properties, d->property_count, values, "pass " + name, groups);
         world_->add_pass(name, std::move(values));
     }
 }

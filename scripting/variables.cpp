@@ -3,6 +3,7 @@
 #include <muParser.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 
@@ -25,6 +26,17 @@ public:
         auto [it, added] = values_.insert_or_assign(name, value);
         if (added) parser_.DefineVar(name, &it->second);
     }
+    // A variable that is a name (a choice, a group) or true/false: it stands
+    // only alone, "$(name)", and is replaced by its JSON value.
+    void set_word(const std::string& name, const json& value) { words_[name] = value; }
+    const json* word(const std::string& expression) const {
+        std::string e = expression;
+        e.erase(0, e.find_first_not_of(" \t"));
+        e.erase(e.find_last_not_of(" \t") + 1);
+        const auto it = words_.find(e);
+        return it == words_.end() ? nullptr : &it->second;
+    }
+    bool is_word(const std::string& name) const { return words_.count(name) > 0; }
     // The value, or the parser's reason in `why`.
     bool evaluate(const std::string& expression, double& out, std::string& why) {
         try {
@@ -44,7 +56,14 @@ public:
 private:
     mu::Parser parser_;
     std::map<std::string, double> values_;
+    std::map<std::string, json> words_;
 };
+
+// A single identifier ("extrapolated_gravity", "dp"), not an expression.
+bool is_identifier(const std::string& s) {
+    if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+    return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
 
 bool is_expression(const json& v) {
     if (!v.is_string()) return false;
@@ -64,8 +83,14 @@ void evaluate_variables(json& vars, Evaluator& eval) {
     std::map<std::string, std::string> pending;
     for (auto& [name, v] : vars.items()) {
         if (v.is_number()) eval.set(name, v.get<double>());
+        else if (v.is_boolean()) eval.set_word(name, v);
+        // a single word that names no other variable (nor pi) is a name, e.g.
+        // a choice: "pressure_mode": "extrapolated_gravity"
+        else if (v.is_string() && !is_expression(v) && is_identifier(v.get<std::string>()) &&
+                 !vars.contains(v.get<std::string>()) && v.get<std::string>() != "pi")
+            eval.set_word(name, v);
         else if (v.is_string()) pending[name] = is_expression(v) ? v.get<std::string>().substr(2, v.get<std::string>().size() - 3) : v.get<std::string>();
-        else n.at(name).fail("expected a number or an expression string, got " + show(v));
+        else n.at(name).fail("expected a number, true or false, a name or an expression string, got " + show(v));
     }
     while (!pending.empty()) {
         std::string first_name, first_why;
@@ -91,6 +116,10 @@ void evaluate_variables(json& vars, Evaluator& eval) {
 void substitute(json& v, const std::string& path, Evaluator& eval) {
     if (is_expression(v)) {
         const std::string s = v.get<std::string>(), expr = s.substr(2, s.size() - 3);
+        if (const json* word = eval.word(expr)) {
+            v = *word;
+            return;
+        }
         double value = 0;
         std::string why;
         if (!eval.evaluate(expr, value, why)) fail_at(path, s, why);

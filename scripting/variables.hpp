@@ -5,6 +5,9 @@
 // expression's value. A resolution study is then one scene and
 // `--set variables.dp=0.0025`. Expressions are muParser's (+ - * / ^, sqrt,
 // exp, ln, log10, sin..., min, max, abs, rint, ?:) plus ceil, floor and pi.
+// A variable may also be true/false or a name (a single word that names no
+// other variable, e.g. "pressure_mode": "extrapolated_gravity", for a choice
+// or a group property); such a one stands alone, "$(pressure_mode)".
 #pragma once
 
 #include "json_reader.hpp"

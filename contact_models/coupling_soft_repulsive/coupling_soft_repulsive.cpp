@@ -36,12 +36,12 @@ struct SoftRepulsive {
 
     enum Prop : int { speed_of_sound, smoothing_length, spacing, prop_count };
     static constexpr plab_property_desc properties[] = {
-        {"speed_of_sound", "numerical speed of sound c", "m/s", 20.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph model; the strength scales with c^2"},
-        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "eta = r/(0.75 h), eq. 22"},
-        {"spacing", "particle spacing dp", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "zeta = 1 - r/dp, eq. 23: the contact acts inside one spacing"},
+        plab::prop::number("speed_of_sound", "numerical speed of sound c", "m/s", 20.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph model; the strength scales with c^2"),
+        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "eta = r/(0.75 h), eq. 22"),
+        plab::prop::number("spacing", "particle spacing dp", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "zeta = 1 - r/dp, eq. 23: the contact acts inside one spacing"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 

@@ -13,30 +13,36 @@ namespace plab::linear_law {
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Property descriptions of the linear law, for every model built on it.
-inline constexpr plab_property_desc kn = {"kn", "normal stiffness", "N/m", 1e6, 0.0, kInfinity,
-                                          PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "linear normal spring (eq. 22)"};
-inline constexpr plab_property_desc ks = {"ks", "shear stiffness", "N/m", 1e6, 0.0, kInfinity, PLAB_MAX_EXCLUSIVE,
-                                          "linear shear spring (eq. 24)"};
-inline constexpr plab_property_desc fric = {"fric", "friction coefficient", "1", 0.0, 0.0, kInfinity,
-                                            PLAB_MAX_EXCLUSIVE, "Coulomb limit (eq. 26)"};
-inline constexpr plab_property_desc dp_nratio = {"dp_nratio", "normal critical damping ratio", "1", 0.0, 0.0, 1.0,
-                                                 PLAB_MAX_EXCLUSIVE, "normal dashpot 2*beta_n*sqrt(m*kn) (eq. 27)"};
-inline constexpr plab_property_desc dp_sratio = {"dp_sratio", "shear critical damping ratio", "1", 0.0, 0.0, 1.0,
-                                                 PLAB_MAX_EXCLUSIVE, "shear dashpot 2*beta_s*sqrt(m*ks) (eq. 28)"};
-inline constexpr plab_property_desc dp_mode = {
-    "dp_mode", "dashpot mode", "1", 0.0, 0.0, 3.0, PLAB_INTEGER,
-    "0 full; 1 shear dashpot off while sliding; 2 total normal force >= 0 (no tension); 3 = 1 and 2"};
-inline constexpr plab_property_desc rgap = {"rgap", "reference gap", "m", 0.0, -kInfinity, kInfinity,
+inline constexpr plab_property_desc kn = plab::prop::number("kn", "normal stiffness", "N/m", 1e6, 0.0, kInfinity,
+                                          PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "linear normal spring (eq. 22)",
+                                          PLAB_MIX_HARMONIC);
+inline constexpr plab_property_desc ks = plab::prop::number("ks", "shear stiffness", "N/m", 1e6, 0.0, kInfinity, PLAB_MAX_EXCLUSIVE,
+                                          "linear shear spring (eq. 24)", PLAB_MIX_HARMONIC);
+inline constexpr plab_property_desc fric = plab::prop::number("fric", "friction coefficient", "1", 0.0, 0.0, kInfinity,
+                                            PLAB_MAX_EXCLUSIVE, "Coulomb limit (eq. 26)", PLAB_MIX_MIN);
+inline constexpr plab_property_desc dp_nratio = plab::prop::number("dp_nratio", "normal critical damping ratio", "1", 0.0, 0.0, 1.0,
+                                                 PLAB_MAX_EXCLUSIVE, "normal dashpot 2*beta_n*sqrt(m*kn) (eq. 27)",
+                                                 PLAB_MIX_ARITHMETIC);
+inline constexpr plab_property_desc dp_sratio = plab::prop::number("dp_sratio", "shear critical damping ratio", "1", 0.0, 0.0, 1.0,
+                                                 PLAB_MAX_EXCLUSIVE, "shear dashpot 2*beta_s*sqrt(m*ks) (eq. 28)",
+                                                 PLAB_MIX_ARITHMETIC);
+// the dashpot modes (PFC's dp_mode 0-3), the law's `dp_mode` in this order
+inline constexpr const char* dp_mode_names[] = {"full", "slip_shear", "no_tension", "no_tension_slip_shear"};
+inline constexpr plab_property_desc dp_mode = plab::prop::choice(
+    "dp_mode", "dashpot mode", dp_mode_names, 0,
+    "full: both dashpots always; slip_shear: the shear dashpot off while sliding; no_tension: the total normal "
+    "force kept >= 0 (the dashpot never pulls); no_tension_slip_shear: both");
+inline constexpr plab_property_desc rgap = plab::prop::number("rgap", "reference gap", "m", 0.0, -kInfinity, kInfinity,
                                             PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-                                            "the linear part is active while surface gap <= rgap"};
+                                            "the linear part is active while surface gap <= rgap");
 
 // History slots of the linear law's shear spring (three, in this order).
-inline constexpr plab_history_desc shear_force_x = {"shear_force_x", 0.0, PLAB_SWAP_NEGATE,
-                                                    "linear shear force on end 2, global x, N"};
-inline constexpr plab_history_desc shear_force_y = {"shear_force_y", 0.0, PLAB_SWAP_NEGATE,
-                                                    "linear shear force on end 2, global y, N"};
-inline constexpr plab_history_desc shear_force_z = {"shear_force_z", 0.0, PLAB_SWAP_NEGATE,
-                                                    "linear shear force on end 2, global z, N"};
+inline constexpr plab_history_desc shear_force_x = plab::history_desc("shear_force_x", 0.0, PLAB_SWAP_NEGATE,
+                                                    "linear shear force on end 2, global x, N");
+inline constexpr plab_history_desc shear_force_y = plab::history_desc("shear_force_y", 0.0, PLAB_SWAP_NEGATE,
+                                                    "linear shear force on end 2, global y, N");
+inline constexpr plab_history_desc shear_force_z = plab::history_desc("shear_force_z", 0.0, PLAB_SWAP_NEGATE,
+                                                    "linear shear force on end 2, global z, N");
 
 struct Params {
     double kn, ks, fric, beta_n, beta_s;

@@ -42,13 +42,13 @@ struct LinearLubrication {
     static constexpr plab_property_desc properties[] = {
         plab::linear_law::kn,        plab::linear_law::ks,      plab::linear_law::fric, plab::linear_law::dp_nratio,
         plab::linear_law::dp_sratio, plab::linear_law::dp_mode, plab::linear_law::rgap,
-        {"mu", "fluid dynamic viscosity mu_f", "Pa s", 8.9e-4, 0.0, inf, PLAB_MAX_EXCLUSIVE,
-         "eq. 76; 0 turns the lubrication off (then this is `linear`)"},
-        {"lub_range", "largest surface gap with lubrication", "m", 0.0024, 0.0, inf, PLAB_MAX_EXCLUSIVE,
+        plab::prop::number("mu", "fluid dynamic viscosity mu_f", "Pa s", 8.9e-4, 0.0, inf, PLAB_MAX_EXCLUSIVE,
+         "eq. 76; 0 turns the lubrication off (then this is `linear`)"),
+        plab::prop::number("lub_range", "largest surface gap with lubrication", "m", 0.0024, 0.0, inf, PLAB_MAX_EXCLUSIVE,
          "eq. 76's cut-off |x| <= 2 d_ij is a gap of one mean diameter: give the particles' diameter; the force is "
-         "also zero beyond one mean diameter of the pair"},
-        {"lub_min_gap", "smallest gap in the lubrication force", "m", 1e-5, 0.0, inf,
-         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "floor of s in eq. 76 (surface roughness): keeps the force finite"},
+         "also zero beyond one mean diameter of the pair"),
+        plab::prop::number("lub_min_gap", "smallest gap in the lubrication force", "m", 1e-5, 0.0, inf,
+         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "floor of s in eq. 76 (surface roughness): keeps the force finite"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 

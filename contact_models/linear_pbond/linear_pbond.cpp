@@ -33,13 +33,13 @@ struct LinearPBond {
         // the linear part (eqs. 21–29)
         plab::linear_law::kn,        plab::linear_law::ks,      plab::linear_law::fric, plab::linear_law::dp_nratio,
         plab::linear_law::dp_sratio, plab::linear_law::dp_mode, plab::linear_law::rgap,
-        {"pb_kn", "bond normal stiffness", "Pa/m", 1e12, 0.0, inf, PLAB_MAX_EXCLUSIVE, "k̄n, per bond area (eq. 47)"},
-        {"pb_ks", "bond shear stiffness", "Pa/m", 1e12, 0.0, inf, PLAB_MAX_EXCLUSIVE, "k̄s, per bond area (eq. 48)"},
-        {"pb_rmul", "bond radius multiplier", "1", 1.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "λ: R̄ = λ min(R1, R2)"},
-        {"pb_mcf", "moment-contribution factor", "1", 1.0, 0.0, 1.0, 0, "β̄ in the bond stresses (eqs. 49–50)"},
-        {"pb_ten", "bond tensile strength", "Pa", inf, 0.0, inf, PLAB_MIN_EXCLUSIVE, "σc (eq. 45); inf: unbreakable"},
-        {"pb_coh", "bond shear strength", "Pa", inf, 0.0, inf, PLAB_MIN_EXCLUSIVE, "τc (eq. 46); inf: unbreakable"},
+        plab::prop::number("pb_kn", "bond normal stiffness", "Pa/m", 1e12, 0.0, inf, PLAB_MAX_EXCLUSIVE, "k̄n, per bond area (eq. 47)"),
+        plab::prop::number("pb_ks", "bond shear stiffness", "Pa/m", 1e12, 0.0, inf, PLAB_MAX_EXCLUSIVE, "k̄s, per bond area (eq. 48)"),
+        plab::prop::number("pb_rmul", "bond radius multiplier", "1", 1.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "λ: R̄ = λ min(R1, R2)"),
+        plab::prop::number("pb_mcf", "moment-contribution factor", "1", 1.0, 0.0, 1.0, 0, "β̄ in the bond stresses (eqs. 49–50)"),
+        plab::prop::number("pb_ten", "bond tensile strength", "Pa", inf, 0.0, inf, PLAB_MIN_EXCLUSIVE, "σc (eq. 45); inf: unbreakable"),
+        plab::prop::number("pb_coh", "bond shear strength", "Pa", inf, 0.0, inf, PLAB_MIN_EXCLUSIVE, "τc (eq. 46); inf: unbreakable"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 
@@ -55,14 +55,14 @@ struct LinearPBond {
         plab::linear_law::shear_force_x,
         plab::linear_law::shear_force_y,
         plab::linear_law::shear_force_z,
-        {"bond_state", 0.0, PLAB_SWAP_KEEP, "1 bonded, 0 unbonded or broken"},
-        {"bond_normal_force", 0.0, PLAB_SWAP_KEEP, "bond normal force, tension positive, N"},
-        {"bond_shear_force_x", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, x, N"},
-        {"bond_shear_force_y", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, y, N"},
-        {"bond_shear_force_z", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, z, N"},
-        {"bond_moment_x", 0.0, PLAB_SWAP_NEGATE, "bond moment on end 2, x, N m"},
-        {"bond_moment_y", 0.0, PLAB_SWAP_NEGATE, "bond moment on end 2, y, N m"},
-        {"bond_moment_z", 0.0, PLAB_SWAP_NEGATE, "bond moment on end 2, z, N m"},
+        plab::history_desc("bond_state", 0.0, PLAB_SWAP_KEEP, "1 bonded, 0 unbonded or broken"),
+        plab::history_desc("bond_normal_force", 0.0, PLAB_SWAP_KEEP, "bond normal force, tension positive, N"),
+        plab::history_desc("bond_shear_force_x", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, x, N"),
+        plab::history_desc("bond_shear_force_y", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, y, N"),
+        plab::history_desc("bond_shear_force_z", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, z, N"),
+        plab::history_desc("bond_moment_x", 0.0, PLAB_SWAP_NEGATE, "bond moment on end 2, x, N m"),
+        plab::history_desc("bond_moment_y", 0.0, PLAB_SWAP_NEGATE, "bond moment on end 2, y, N m"),
+        plab::history_desc("bond_moment_z", 0.0, PLAB_SWAP_NEGATE, "bond moment on end 2, z, N m"),
     };
     static constexpr int persist_slot = bond_state;
 

@@ -37,6 +37,8 @@ using plab::sph::PairForce;
 using plab::sph::Viscosity;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+// the `viscosity` property's values, by index (0 laminar, 1 artificial)
+constexpr const char* viscosity_names[] = {"laminar", "artificial"};
 
 // The body fields the model reads (Sph::fields_read, in this order).
 enum Field : int { density, pressure, wall_dvx, wall_dvy, wall_dvz };
@@ -118,40 +120,38 @@ struct Sph {
         anticlump, anticlump_spacing, density_diffusion, prop_count
     };
     static constexpr plab_property_desc properties[] = {
-        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "kernel support is 2h (Wendland C2, cubic spline) or 3h (quintic)"},
-        // defaults 1 (not 0): the contract suite moves a zero default into the
-        // range (0 -> 0.6), which is not a whole number (docs/sph.md)
-        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER,
-         "0 Wendland C2 (eq. 12, the thesis' choice), 1 cubic spline (eq. 11), 2 quintic spline"},
-        {"rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "used for the viscous step limit and for a body whose density field is not set"},
-        {"speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0, inf,
-         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "CFL limit and Monaghan viscosity; about 10 x the largest flow speed"},
-        {"viscosity", "viscosity model", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
-         "0 Morris laminar with dynamic viscosity mu (eq. 14); 1 Monaghan artificial with alpha, beta (Islam eq. 8)"},
-        {"mu", "dynamic viscosity", "Pa s", 8.9e-4, 0.0, inf, PLAB_MAX_EXCLUSIVE, "laminar model (viscosity 0)"},
-        {"alpha", "artificial viscosity alpha", "1", 0.02, 0.0, inf, PLAB_MAX_EXCLUSIVE,
-         "linear term of the Monaghan viscosity (viscosity 1)"},
-        {"beta", "artificial viscosity beta", "1", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
-         "quadratic term of the Monaghan viscosity (viscosity 1)"},
-        {"anticlump", "anti-clump coefficient (v_max/c0)^2", "1", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
-         "R_ij of eq. 17; 0 switches it off, the thesis uses 0.01"},
-        {"anticlump_spacing", "initial particle spacing for W(dp)", "m", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
-         "dp in (W_ij / W(dp))^4 of eq. 17; 0: dp = h; a dp outside the kernel support switches R_ij off"},
-        {"density_diffusion", "delta-SPH coefficient delta", "1", 0.0, 0.0, 1.0, 0,
+        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "kernel support is 2h (Wendland C2, cubic spline) or 3h (quintic)"),
+        plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1,
+         "wendland_c2: Wendland C2 (eq. 12, the thesis' choice); cubic: cubic spline (eq. 11); quintic: quintic spline"),
+        plab::prop::number("rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "used for the viscous step limit and for a body whose density field is not set"),
+        plab::prop::number("speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0, inf,
+         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "CFL limit and Monaghan viscosity; about 10 x the largest flow speed"),
+        plab::prop::choice("viscosity", "viscosity model", viscosity_names, 1,
+         "laminar: Morris, with dynamic viscosity mu (eq. 14); artificial: Monaghan, with alpha, beta (Islam eq. 8)"),
+        plab::prop::number("mu", "dynamic viscosity", "Pa s", 8.9e-4, 0.0, inf, PLAB_MAX_EXCLUSIVE, "laminar model (viscosity laminar)"),
+        plab::prop::number("alpha", "artificial viscosity alpha", "1", 0.02, 0.0, inf, PLAB_MAX_EXCLUSIVE,
+         "linear term of the Monaghan viscosity (viscosity artificial)"),
+        plab::prop::number("beta", "artificial viscosity beta", "1", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
+         "quadratic term of the Monaghan viscosity (viscosity artificial)"),
+        plab::prop::number("anticlump", "anti-clump coefficient (v_max/c0)^2", "1", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
+         "R_ij of eq. 17; 0 switches it off, the thesis uses 0.01"),
+        plab::prop::number("anticlump_spacing", "initial particle spacing for W(dp)", "m", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
+         "dp in (W_ij / W(dp))^4 of eq. 17; 0: dp = h; a dp outside the kernel support switches R_ij off"),
+        plab::prop::number("density_diffusion", "delta-SPH coefficient delta", "1", 0.0, 0.0, 1.0, 0,
          "density diffusion delta h c0 sum 2 m_j/rho_j (rho_i - rho_j) x_ij.grad W/(r^2 + 0.01h^2) (Islam eq. 6); "
-         "0 off, Islam uses 0.1; set it on the fluid-fluid rule"},
+         "0 off, Islam uses 0.1; set it on the fluid-fluid rule"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 
     // density and pressure first: other plug-ins (SPH-DEM coupling) name them so
     static constexpr plab_field_desc fields_read[] = {
-        {"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0},
-        {"sph_wall_velocity_correction_x", "m/s", 0.0}, {"sph_wall_velocity_correction_y", "m/s", 0.0},
-        {"sph_wall_velocity_correction_z", "m/s", 0.0}};
+        plab::field_desc("sph_density", "kg/m3", 1000.0), plab::field_desc("sph_pressure", "Pa", 0.0),
+        plab::field_desc("sph_wall_velocity_correction_x", "m/s", 0.0), plab::field_desc("sph_wall_velocity_correction_y", "m/s", 0.0),
+        plab::field_desc("sph_wall_velocity_correction_z", "m/s", 0.0)};
     enum Acc : int { drho_dt };
-    static constexpr plab_field_desc fields_accumulated[] = {{"sph_drho_dt", "kg/(m3 s)", 0.0}};
+    static constexpr plab_field_desc fields_accumulated[] = {plab::field_desc("sph_drho_dt", "kg/(m3 s)", 0.0)};
 
     static double activity_range(const double* p) {
         return plab::sph::support_factor(KernelKind(int(p[kernel]))) * p[smoothing_length];

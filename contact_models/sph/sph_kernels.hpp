@@ -19,6 +19,8 @@
 namespace plab::sph {
 
 enum class KernelKind : int { wendland_c2 = 0, cubic_spline = 1, quintic_spline = 2 };
+// the names scenes give the kernels, in KernelKind's order (a choice property)
+inline constexpr const char* kernel_names[] = {"wendland_c2", "cubic", "quintic"};
 
 // Support radius in units of h: 2 for Wendland C2 and the cubic spline, 3 for the quintic.
 inline double support_factor(KernelKind k) { return k == KernelKind::quintic_spline ? 3.0 : 2.0; }

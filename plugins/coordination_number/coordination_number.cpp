@@ -12,7 +12,7 @@ struct CoordinationNumber {
     static constexpr const char* doc = "Number of active contacts per ball, after each force-displacement.";
     static constexpr uint32_t phase = PLAB_PHASE_POST_FORCE;
     static constexpr uint32_t stage = 0;
-    static constexpr plab_field_desc fields[] = {{"coordination_number", "1", 0.0}};
+    static constexpr plab_field_desc fields[] = {plab::field_desc("coordination_number", "1", 0.0)};
 
     explicit CoordinationNumber(const double*) {}
 

@@ -46,20 +46,23 @@ using plab::sph::KernelKind;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-constexpr plab_property_desc smoothing_length_desc = {
+constexpr plab_property_desc smoothing_length_desc = plab::prop::number(
     "smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-    "as in the sph contact model: the voidage and Shepard sums use the fluid's kernel"};
-constexpr plab_property_desc kernel_desc = {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER,
-                                            "as in the sph contact model: 0 Wendland C2, 1 cubic spline, 2 quintic"};
+    "as in the sph contact model: the voidage and Shepard sums use the fluid's kernel");
+constexpr plab_property_desc kernel_desc = plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1,
+                                            "as in the sph contact model: wendland_c2, cubic (spline) or quintic");
+// drag_2d and buoyancy by index (Drag2d; 0 pressure gradient, 1 eq. 75)
+constexpr const char* drag_2d_names[] = {"cylinder", "thesis"};
+constexpr const char* buoyancy_names[] = {"pressure_gradient", "hydrostatic"};
 
 // Per-body fields shared by the pass (writes) and the model (reads).
-constexpr plab_field_desc solid_volume_field = {"fp_solid_volume", "m3", 0.0};  // V_p on solids, 0 elsewhere
-constexpr plab_field_desc shepard_field = {"fp_shepard", "1", 0.0};             // S_p, eq. 82
-constexpr plab_field_desc force_x_field = {"fp_force_x", "N", 0.0};             // fluid force on the solid
-constexpr plab_field_desc force_y_field = {"fp_force_y", "N", 0.0};
-constexpr plab_field_desc force_z_field = {"fp_force_z", "N", 0.0};
-constexpr plab_field_desc drag_coefficient_field = {"fp_drag_coefficient", "N s/m", 0.0};  // K = |F_d|/|w|
-constexpr plab_field_desc density_field = {"sph_density", "kg/m3", 1000.0};
+constexpr plab_field_desc solid_volume_field = plab::field_desc("fp_solid_volume", "m3", 0.0);  // V_p on solids, 0 elsewhere
+constexpr plab_field_desc shepard_field = plab::field_desc("fp_shepard", "1", 0.0);             // S_p, eq. 82
+constexpr plab_field_desc force_x_field = plab::field_desc("fp_force_x", "N", 0.0);             // fluid force on the solid
+constexpr plab_field_desc force_y_field = plab::field_desc("fp_force_y", "N", 0.0);
+constexpr plab_field_desc force_z_field = plab::field_desc("fp_force_z", "N", 0.0);
+constexpr plab_field_desc drag_coefficient_field = plab::field_desc("fp_drag_coefficient", "N s/m", 0.0);  // K = |F_d|/|w|
+constexpr plab_field_desc density_field = plab::field_desc("sph_density", "kg/m3", 1000.0);
 
 struct FluidParticleDrag {
     static constexpr const char* name = "fluid_particle_drag";
@@ -76,32 +79,31 @@ struct FluidParticleDrag {
         prop_count
     };
     static constexpr plab_property_desc properties[] = {
-        {"fluid_group", "group index of the SPH fluid", "1", 0.0, 0.0, 1e9, PLAB_INTEGER,
-         "groups are numbered in the order the scene first names them"},
-        {"solid_group", "group index of the solid particles", "1", 1.0, 0.0, 1e9, PLAB_INTEGER, "as fluid_group"},
+        plab::prop::group("fluid_group", "group of the SPH fluid", "the fluid balls the solids are coupled to"),
+        plab::prop::group("solid_group", "group of the solid particles", "the DEM balls the fluid drags"),
         smoothing_length_desc,
         kernel_desc,
-        {"rest_density", "fluid reference density rho_f", "kg/m3", 1000.0, 0.0, inf,
-         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "in the drag law (eq. 70) and the eq. 75 buoyancy"},
-        {"mu", "fluid dynamic viscosity mu_f", "Pa s", 1e-3, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "in the Ergun branch and the Reynolds number (eqs. 70, 73)"},
-        {"drag_2d", "2D reading of the drag law", "1", 0.0, 0.0, 1.0, PLAB_INTEGER,
-         "0 cylinder: 1/2 Cd rho A eps^-1.65 |w| w with A = d and a cylinder's Cd; 1 thesis: eq. 70 on the disc area "
-         "with a sphere's Cd (drag_law.hpp); no effect in 3D"},
-        {"buoyancy", "buoyancy law", "1", 0.0, 0.0, 1.0, PLAB_INTEGER,
-         "0 -V_p grad p from the SPH pressure; 1 thesis eq. 75, -eps_p rho_f V_p g"},
-        {"min_voidage", "lower bound of the fluid voidage", "1", 0.2, 0.0, 1.0,
-         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "eq. 52 can go below zero where a large solid sits in a small kernel"},
-        {"gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity (eq. 75)"},
-        {"gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity (eq. 75)"},
-        {"gravity_z", "gravity, z", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity (eq. 75)"},
+        plab::prop::number("rest_density", "fluid reference density rho_f", "kg/m3", 1000.0, 0.0, inf,
+         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "in the drag law (eq. 70) and the eq. 75 buoyancy"),
+        plab::prop::number("mu", "fluid dynamic viscosity mu_f", "Pa s", 1e-3, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "in the Ergun branch and the Reynolds number (eqs. 70, 73)"),
+        plab::prop::choice("drag_2d", "2D reading of the drag law", drag_2d_names, 0,
+         "cylinder: 1/2 Cd rho A eps^-1.65 |w| w with A = d and a cylinder's Cd; thesis: eq. 70 on the disc area "
+         "with a sphere's Cd (drag_law.hpp); no effect in 3D"),
+        plab::prop::choice("buoyancy", "buoyancy law", buoyancy_names, 0,
+         "pressure_gradient: -V_p grad p from the SPH pressure; hydrostatic: thesis eq. 75, -eps_p rho_f V_p g"),
+        plab::prop::number("min_voidage", "lower bound of the fluid voidage", "1", 0.2, 0.0, 1.0,
+         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "eq. 52 can go below zero where a large solid sits in a small kernel"),
+        plab::prop::number("gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity (eq. 75)"),
+        plab::prop::number("gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity (eq. 75)"),
+        plab::prop::number("gravity_z", "gravity, z", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity (eq. 75)"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 
     enum Field : int { voidage, solid_volume, shepard, force_x, force_y, force_z, drag_coeff, density, pressure };
     static constexpr plab_field_desc fields[] = {
-        {"voidage", "1", 1.0}, solid_volume_field, shepard_field, force_x_field, force_y_field, force_z_field,
-        drag_coefficient_field, density_field, {"sph_pressure", "Pa", 0.0}};
+        plab::field_desc("voidage", "1", 1.0), solid_volume_field, shepard_field, force_x_field, force_y_field, force_z_field,
+        drag_coefficient_field, density_field, plab::field_desc("sph_pressure", "Pa", 0.0)};
 
     explicit FluidParticleDrag(const double* p)
         : fluid_(int(p[fluid_group])), solid_(int(p[solid_group])), kind_(KernelKind(int(p[kernel]))),

@@ -7,14 +7,14 @@
 //
 // This pass (phase RATES_DONE, stage 25: after sph_density_integration and
 // sph_eos have touched every ball, before the force stage) sets the SPH state
-// of the structure's balls, `pressure_mode`:
-//   0  thesis: ρ = ρ0, p = 0 at all times;
-//   1  extrapolated from the fluid as for a moving wall (Adami et al. 2012,
+// of the structure's balls, `pressure_mode` (index 0, 1, 2 to the pass):
+//   rest (0)  thesis: ρ = ρ0, p = 0 at all times;
+//   extrapolated (1)  extrapolated from the fluid as for a moving wall (Adami et al. 2012,
 //      Islam eqs. 10–11): p_s = (Σ_f p_f W_sf + (g - a_s)·Σ_f ρ_f (x_s - x_f) W_sf) / Σ_f W_sf,
 //      ρ_s = ρ0 (p_s/B + 1)^(1/γ), with a_s the ball's acceleration of the
 //      last cycle (force / mass). A structure ball with no fluid neighbour
 //      gets p = 0, ρ = ρ0;
-//   2  as 1 without the ball's acceleration, (g·(x_s - x_f)) only. A lattice
+//   extrapolated_gravity (2)  as 1 without the ball's acceleration, (g·(x_s - x_f)) only. A lattice
 //      ball's F/m is dominated by its bond vibration (periods of ~0.1 ms,
 //      accelerations of 1e4 m/s² against the surface's few m/s²), which mode 1
 //      turns into pressure noise of ρ |a| h ≈ 3e4 Pa — enough to pull a
@@ -37,12 +37,13 @@
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr const char* pressure_mode_names[] = {"rest", "extrapolated", "extrapolated_gravity"};
 
 struct StructureSphState {
     static constexpr const char* name = "structure_sph_state";
     static constexpr const char* doc =
         "SPH density and pressure of structure balls that join the SPH sums (thesis 4.2-4.3): rho0 and p = 0 "
-        "(pressure_mode 0, thesis), or extrapolated from the fluid as for a moving wall (pressure_mode 1, Adami 2012 / "
+        "(pressure_mode rest, thesis), or extrapolated from the fluid as for a moving wall (pressure_mode extrapolated, Adami 2012 / "
         "Islam eqs. 10-11 with the ball's acceleration). Runs after sph_eos; assign `sph` to fluid x structure.";
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 25;  // after sph_eos (10) and sph_wall_pressure (20)
@@ -51,27 +52,26 @@ struct StructureSphState {
         prop_count
     };
     static constexpr plab_property_desc properties[] = {
-        {"structure_group", "group index of the structure balls", "1", 0.0, 0.0, 1e9, PLAB_INTEGER,
-         "groups are numbered in the order the scene first names them"},
-        {"fluid_group", "group index of the SPH fluid", "1", 1.0, 0.0, 1e9, PLAB_INTEGER, "as structure_group"},
-        {"pressure_mode", "structure pressure", "1", 1.0, 0.0, 2.0, PLAB_INTEGER,
-         "0 thesis: rho0, p = 0; 1 extrapolated from the fluid with the ball's acceleration; 2 extrapolated with "
-         "gravity only (for lattices whose balls vibrate: free-standing or breaking structures)"},
-        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"},
-        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
-        {"rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"},
-        {"speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in sph_eos; B = rho0 c0^2/gamma"},
-        {"gamma", "polytropic exponent", "1", 7.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in sph_eos"},
-        {"gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
-        {"gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
-        {"gravity_z", "gravity, z", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
+        plab::prop::group("structure_group", "group of the structure balls", "the balls given an SPH state"),
+        plab::prop::group("fluid_group", "group of the SPH fluid", "the fluid the state is extrapolated from"),
+        plab::prop::choice("pressure_mode", "structure pressure", pressure_mode_names, 1,
+         "rest: rho0, p = 0 (thesis); extrapolated: from the fluid with the ball's acceleration; extrapolated_gravity: "
+         "from the fluid with gravity only (for lattices whose balls vibrate: free-standing or breaking structures)"),
+        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"),
+        plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1, "as in the sph contact model"),
+        plab::prop::number("rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"),
+        plab::prop::number("speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in sph_eos; B = rho0 c0^2/gamma"),
+        plab::prop::number("gamma", "polytropic exponent", "1", 7.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in sph_eos"),
+        plab::prop::number("gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),
+        plab::prop::number("gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),
+        plab::prop::number("gravity_z", "gravity, z", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
     enum Field : int { density, pressure };
-    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0}};
+    static constexpr plab_field_desc fields[] = {plab::field_desc("sph_density", "kg/m3", 1000.0), plab::field_desc("sph_pressure", "Pa", 0.0)};
 
     explicit StructureSphState(const double* p)
         : structure_(int(p[structure_group])), fluid_(int(p[fluid_group])), extrapolate_(int(p[pressure_mode]) >= 1),

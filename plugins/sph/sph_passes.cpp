@@ -40,17 +40,16 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 
 // The equation of state's constants, declared by every pass that uses them;
 // a scene gives them the same values as the sph contact model.
-constexpr plab_property_desc rest_density_desc = {"rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf,
-                                                  PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in the sph contact model"};
-constexpr plab_property_desc speed_of_sound_desc = {"speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0,
+constexpr plab_property_desc rest_density_desc = plab::prop::number("rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf,
+                                                  PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in the sph contact model");
+constexpr plab_property_desc speed_of_sound_desc = plab::prop::number("speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0,
                                                     inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-                                                    "as in the sph contact model; B = rho0 c0^2/gamma"};
-constexpr plab_property_desc gamma_desc = {"gamma", "polytropic exponent", "1", 7.0, 0.0, inf,
-                                           PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "Tait exponent, 7 for water"};
+                                                    "as in the sph contact model; B = rho0 c0^2/gamma");
+constexpr plab_property_desc gamma_desc = plab::prop::number("gamma", "polytropic exponent", "1", 7.0, 0.0, inf,
+                                           PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "Tait exponent, 7 for water");
 
-constexpr plab_property_desc boundary_group_desc = {
-    "boundary_group", "group index of fixed boundary balls", "1", -1.0, -1.0, 1e9, PLAB_INTEGER,
-    "their density stays rho0 (thesis 2.2.4); groups are numbered in the order the scene first names them; -1: none"};
+constexpr plab_property_desc boundary_group_desc = plab::prop::optional_group(
+    "boundary_group", "group of fixed boundary balls", "their density stays rho0 (thesis 2.2.4); none: no boundary balls");
 
 struct SphEos {
     static constexpr const char* name = "sph_eos";
@@ -67,23 +66,23 @@ struct SphEos {
     static constexpr plab_property_desc properties[] = {
         rest_density_desc, speed_of_sound_desc, gamma_desc,
         boundary_group_desc,
-        {"hydrostatic_gravity", "gravity for the initial hydrostatic density", "m/s2", 0.0, 0.0, inf,
-         PLAB_MAX_EXCLUSIVE, "g of the initial profile; 0: uniform rho0"},
-        {"surface_level", "free-surface height H of the initial profile", "m", 0.0, -inf, inf,
-         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "vertical coordinate (y in 2D, z in 3D) of the free surface"},
-        {"density_band", "largest |rho/rho0 - 1| of a fluid ball", "1", 0.05, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+        plab::prop::number("hydrostatic_gravity", "gravity for the initial hydrostatic density", "m/s2", 0.0, 0.0, inf,
+         PLAB_MAX_EXCLUSIVE, "g of the initial profile; 0: uniform rho0"),
+        plab::prop::number("surface_level", "free-surface height H of the initial profile", "m", 0.0, -inf, inf,
+         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "vertical coordinate (y in 2D, z in 3D) of the free surface"),
+        plab::prop::number("density_band", "largest |rho/rho0 - 1| of a fluid ball", "1", 0.05, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
          "the run stops (last good state kept) when a fluid density leaves rho0 (1 +- band); the density error grows "
-         "as (v/c0)^2 and g H/c0^2: 0.05 passes c0 = 5 x the largest speed and stops 3 x (docs/stability.md)"},
-        {"initial_density", "set the initial density", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
-         "1: at the first run rho0 / the hydrostatic profile (a state for the continuity equation or the normalised "
-         "summation); 0: keep what the density pass computed (plain summation density, a function of positions)"},
-        {"expected_max_speed", "largest flow speed the scene expects", "m/s", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
+         "as (v/c0)^2 and g H/c0^2: 0.05 passes c0 = 5 x the largest speed and stops 3 x (docs/stability.md)"),
+        plab::prop::boolean("initial_density", "set the initial density", true,
+         "true: at the first run rho0 / the hydrostatic profile (a state for the continuity equation or the normalised "
+         "summation); false: keep what the density pass computed (plain summation density, a function of positions)"),
+        plab::prop::number("expected_max_speed", "largest flow speed the scene expects", "m/s", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
          "from the material (2 sqrt(g H) for a dam break of height H); only for the advice when the density band "
-         "is left; 0: not stated"},
+         "is left; 0: not stated"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
     enum Field : int { density, pressure };
-    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0}};
+    static constexpr plab_field_desc fields[] = {plab::field_desc("sph_density", "kg/m3", 1000.0), plab::field_desc("sph_pressure", "Pa", 0.0)};
 
     explicit SphEos(const double* p)
         : rho0_(p[rest_density]), gamma_(p[gamma]), b_(p[rest_density] * p[speed_of_sound] * p[speed_of_sound] / p[gamma]),
@@ -227,33 +226,32 @@ struct SphWallPressure {
         wall_acceleration, prop_count
     };
     static constexpr plab_property_desc properties[] = {
-        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"},
-        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
+        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"),
+        plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1, "as in the sph contact model"),
         rest_density_desc, speed_of_sound_desc, gamma_desc,
         boundary_group_desc,
-        {"gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
-        {"gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
-        {"gravity_z", "gravity, z", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"},
-        // default 1 (not 0): the contract suite moves zero defaults of whole numbers off whole numbers
-        {"no_slip", "no-slip walls", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
-         "1: viscous terms see the wall at 2 v_wall - (fluid velocity interpolated to the wall ball) (Adami 2012); "
-         "0: at the wall ball's own velocity"},
-        {"wall_acceleration", "wall acceleration term", "1", 1.0, 0.0, 1.0, PLAB_INTEGER,
-         "1: g - a_w in the extrapolation (Islam eq. 10), a_w from the wall ball's prescribed velocity history; "
-         "0: g only (a_w = 0)"},
+        plab::prop::number("gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),
+        plab::prop::number("gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),
+        plab::prop::number("gravity_z", "gravity, z", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),
+        plab::prop::boolean("no_slip", "no-slip walls", true,
+         "true: viscous terms see the wall at 2 v_wall - (fluid velocity interpolated to the wall ball) (Adami 2012); "
+         "false: at the wall ball's own velocity"),
+        plab::prop::boolean("wall_acceleration", "wall acceleration term", true,
+         "true: g - a_w in the extrapolation (Islam eq. 10), a_w from the wall ball's prescribed velocity history; "
+         "false: g only (a_w = 0)"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
     enum Field : int { density, pressure, wall_dvx, wall_ax = wall_dvx + 3, wall_vx_prev = wall_ax + 3 };
     static constexpr plab_field_desc fields[] = {
-        {"sph_density", "kg/m3", 1000.0}, {"sph_pressure", "Pa", 0.0},
-        {"sph_wall_velocity_correction_x", "m/s", 0.0}, {"sph_wall_velocity_correction_y", "m/s", 0.0},
-        {"sph_wall_velocity_correction_z", "m/s", 0.0},
+        plab::field_desc("sph_density", "kg/m3", 1000.0), plab::field_desc("sph_pressure", "Pa", 0.0),
+        plab::field_desc("sph_wall_velocity_correction_x", "m/s", 0.0), plab::field_desc("sph_wall_velocity_correction_y", "m/s", 0.0),
+        plab::field_desc("sph_wall_velocity_correction_z", "m/s", 0.0),
         // fields rather than pass state: checkpoints and the last good state carry them
-        {"sph_wall_acceleration_x", "m/s2", 0.0}, {"sph_wall_acceleration_y", "m/s2", 0.0},
-        {"sph_wall_acceleration_z", "m/s2", 0.0},
-        {"sph_wall_velocity_previous_x", "m/s", 0.0}, {"sph_wall_velocity_previous_y", "m/s", 0.0},
-        {"sph_wall_velocity_previous_z", "m/s", 0.0}};
+        plab::field_desc("sph_wall_acceleration_x", "m/s2", 0.0), plab::field_desc("sph_wall_acceleration_y", "m/s2", 0.0),
+        plab::field_desc("sph_wall_acceleration_z", "m/s2", 0.0),
+        plab::field_desc("sph_wall_velocity_previous_x", "m/s", 0.0), plab::field_desc("sph_wall_velocity_previous_y", "m/s", 0.0),
+        plab::field_desc("sph_wall_velocity_previous_z", "m/s", 0.0)};
 
     explicit SphWallPressure(const double* p)
         : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), rho0_(p[rest_density]),
@@ -328,7 +326,7 @@ struct SphDensityIntegration {
     static constexpr uint32_t stage = 0;
     static constexpr plab_property_desc properties[] = {boundary_group_desc};
     enum Field : int { density, drho_dt };
-    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}, {"sph_drho_dt", "kg/(m3 s)", 0.0}};
+    static constexpr plab_field_desc fields[] = {plab::field_desc("sph_density", "kg/m3", 1000.0), plab::field_desc("sph_drho_dt", "kg/(m3 s)", 0.0)};
 
     explicit SphDensityIntegration(const double* p) : boundary_(int(p[0])) {}
 
@@ -372,17 +370,17 @@ struct SphDensitySummation {
     static constexpr uint32_t stage = 5;  // after sph_density_integration (0), before sph_eos (10)
     enum Prop : int { smoothing_length, kernel, boundary_group, normalised, prop_count };
     static constexpr plab_property_desc properties[] = {
-        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"},
-        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
+        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"),
+        plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1, "as in the sph contact model"),
         boundary_group_desc,
-        {"normalised", "normalised summation", "1", 0.0, 0.0, 1.0, PLAB_INTEGER,
-         "0: rho_i = sum m_j W_ij (eq. 8); 1: divided by sum (m_j/rho_j) W_ij (eq. 9, Shepard filter of the "
-         "continuity density: use with sph_density_integration)"},
+        plab::prop::boolean("normalised", "normalised summation", false,
+         "false: rho_i = sum m_j W_ij (eq. 8); true: divided by sum (m_j/rho_j) W_ij (eq. 9, Shepard filter of the "
+         "continuity density: use with sph_density_integration)"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
     enum Field : int { density };
-    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0}};
+    static constexpr plab_field_desc fields[] = {plab::field_desc("sph_density", "kg/m3", 1000.0)};
 
     explicit SphDensitySummation(const double* p)
         : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), boundary_(int(p[boundary_group])),
@@ -587,19 +585,19 @@ struct SphXsph {
     static constexpr uint32_t stage = 0;
     enum Prop : int { smoothing_length, kernel, boundary_group, epsilon, prop_count };
     static constexpr plab_property_desc properties[] = {
-        {"smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"},
-        {"kernel", "kernel function", "1", 1.0, 0.0, 2.0, PLAB_INTEGER, "as in the sph contact model"},
+        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "as in the sph contact model"),
+        plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1, "as in the sph contact model"),
         boundary_group_desc,
-        {"epsilon", "XSPH coefficient", "1", 0.5, 0.0, 1.0, 0,
-         "eps of eq. 18; 0.5 is usual, large values slow the flow unphysically (thesis 2.2.3)"},
+        plab::prop::number("epsilon", "XSPH coefficient", "1", 0.5, 0.0, 1.0, 0,
+         "eps of eq. 18; 0.5 is usual, large values slow the flow unphysically (thesis 2.2.3)"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
     enum Field : int { density, dvx, dvy, dvz };
-    static constexpr plab_field_desc fields[] = {{"sph_density", "kg/m3", 1000.0},
-                                                 {PLAB_DRIFT_CORRECTION_X, "m/s", 0.0},
-                                                 {PLAB_DRIFT_CORRECTION_Y, "m/s", 0.0},
-                                                 {PLAB_DRIFT_CORRECTION_Z, "m/s", 0.0}};
+    static constexpr plab_field_desc fields[] = {plab::field_desc("sph_density", "kg/m3", 1000.0),
+                                                 plab::field_desc(PLAB_DRIFT_CORRECTION_X, "m/s", 0.0),
+                                                 plab::field_desc(PLAB_DRIFT_CORRECTION_Y, "m/s", 0.0),
+                                                 plab::field_desc(PLAB_DRIFT_CORRECTION_Z, "m/s", 0.0)};
 
     explicit SphXsph(const double* p)
         : kind_(plab::sph::KernelKind(int(p[kernel]))), h_(p[smoothing_length]), boundary_(int(p[boundary_group])),

@@ -72,7 +72,7 @@ std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state
         for (std::size_t h = 0; h < hs; ++h) hist[k * hs + h] = c.history.empty() ? d.history[h].default_value : c.history[h];
         if (d.persist_slot >= 0 && hist[k * hs + d.persist_slot] > 0) active[k] = 1;  // as the host: a bond holds
     }
-    plab_contact_batch b{};
+    plab_contact_batch b{sizeof(plab_contact_batch)};
     b.dim = uint32_t(dim); b.count = uint32_t(n); b.history_stride = uint32_t(hs); b.dt = dt;
     b.end1 = e1.data(); b.end2 = e2.data(); b.active = active.data();
     b.normal = normal.data(); b.gap = gap.data(); b.distance = dist.data();
@@ -102,19 +102,34 @@ std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state
     return out;
 }
 
-// Property values that exercise a model: defaults, with zero defaults moved
-// into the range (friction 0 → 0.5, damping 0 → 0.3 of its range).
+// Property values that exercise a model: defaults, with zero defaults of
+// numbers moved into the range (friction 0 → 0.5, damping 0 → 0.3 of its
+// range); bools, choices and groups keep their defaults.
 std::vector<double> exercising_properties(const plab_contact_model_desc& d) {
     std::vector<double> v;
     for (uint32_t p = 0; p < d.property_count; ++p) {
         const auto& q = d.properties[p];
         double x = q.default_value;
-        if (x == 0 && std::isfinite(q.min_value))
+        const bool numeric = q.kind == PLAB_KIND_NUMBER || q.kind == PLAB_KIND_INTEGER;
+        if (numeric && x == 0 && std::isfinite(q.min_value))
             x = std::isfinite(q.max_value) ? q.min_value + 0.3 * (q.max_value - q.min_value) : q.min_value + 0.5;
-        if (q.flags & PLAB_INTEGER) x = std::floor(x);  // modes and counts are whole numbers
+        if (q.kind == PLAB_KIND_INTEGER) x = std::floor(x);  // counts are whole numbers
         v.push_back(x);
     }
     return v;
+}
+
+// Every value of a property with few: a choice's indices, a bool's 0 and 1,
+// a small integer range; none for the others.
+std::vector<double> every_value(const plab_property_desc& q) {
+    std::vector<double> out;
+    if (q.kind == PLAB_KIND_CHOICE)
+        for (uint32_t c = 0; c < q.choice_count; ++c) out.push_back(c);
+    else if (q.kind == PLAB_KIND_BOOL)
+        out = {0.0, 1.0};
+    else if (q.kind == PLAB_KIND_INTEGER && q.max_value - q.min_value <= 4)
+        for (double v = q.min_value; v <= q.max_value; v += 1) out.push_back(v);
+    return out;
 }
 
 // A contact in the middle of the activity range with sliding and spin.
@@ -329,12 +344,11 @@ TEST_CASE("contract: a batch of active rows only gives what the same rows give a
         const plab_contact_model_desc& d = *m->d;
         if (d.persist_slot >= 0) continue;  // inactive rows made by their gap or distance
         std::vector<std::vector<double>> prop_sets{m->props};
-        for (uint32_t p = 0; p < d.property_count; ++p)  // every value of a small integer property (a mode)
-            if ((d.properties[p].flags & PLAB_INTEGER) && d.properties[p].max_value - d.properties[p].min_value <= 4)
-                for (double v = d.properties[p].min_value; v <= d.properties[p].max_value; v += 1) {
-                    prop_sets.push_back(m->props);
-                    prop_sets.back()[p] = v;
-                }
+        for (uint32_t p = 0; p < d.property_count; ++p)  // every value of a mode (a choice, a bool, a small integer)
+            for (double v : every_value(d.properties[p])) {
+                prop_sets.push_back(m->props);
+                prop_sets.back()[p] = v;
+            }
         prop_sets.push_back(m->props);
         for (uint32_t p = 0; p < d.property_count; ++p)
             if (d.properties[p].default_value == 0) prop_sets.back()[p] = 0;

@@ -66,9 +66,9 @@ json tank_scene(bool with_options = false) {
     json scene = read_scene_file(std::string(PLAB_SOURCE_DIR) + "/validation/static_tank/scene.json");
     for (const char* k : {"commands", "output", "histories", "metrics"}) scene.erase(k);
     if (with_options) {
-        scene["passes"].push_back({{"name", "sph_xsph"}, {"material", "water"}, {"properties", {{"boundary_group", 1}}}});
+        scene["passes"].push_back({{"name", "sph_xsph"}, {"material", "water"}, {"properties", {{"boundary_group", "boundary"}}}});
         scene["passes"].push_back({{"name", "sph_density_summation"}, {"material", "water"},
-                                   {"properties", {{"boundary_group", 1}, {"normalised", 1}}}});
+                                   {"properties", {{"boundary_group", "boundary"}, {"normalised", true}}}});
     }
     return scene;
 }

@@ -28,7 +28,7 @@ constexpr double dp = 0.01, rho0 = 1000.0;
 // A 20 x 20 block of fluid at rest, no gravity, no walls: its top, bottom
 // and sides are free surfaces. Cubic spline, h = 1.3 dp.
 json resting_block(int normalised, int side = 20, double jitter = 0) {
-    const json water = {{"groups", {"fluid"}}, {"smoothing_length", 1.3 * dp}, {"kernel", 1},
+    const json water = {{"groups", {"fluid"}}, {"smoothing_length", 1.3 * dp}, {"kernel", "cubic"},
                         {"rest_density", rho0}, {"speed_of_sound", 10}, {"gamma", 7}};
     return {{"dimension", 2},
             {"plugins", {"sph", "sph_passes"}},
@@ -37,10 +37,10 @@ json resting_block(int normalised, int side = 20, double jitter = 0) {
                          {"mass", rho0 * dp * dp}, {"fix", {"rotation"}}, {"jitter", {{"position", jitter * dp}}}}}},
             {"materials", {{"water", water}}},
             {"contact_models", {{{"groups", {"fluid", "fluid"}}, {"model", "sph"}, {"properties", {{"alpha", 0.1}}}}}},
-            {"passes", {{{"name", "sph_density_summation"}, {"material", "water"}, {"properties", {{"normalised", normalised}}}},
+            {"passes", {{{"name", "sph_density_summation"}, {"material", "water"}, {"properties", {{"normalised", normalised != 0}}}},
                         // the free edges of plain summation sit far below rho0 by design
                         {{"name", "sph_eos"}, {"material", "water"},
-                         {"properties", {{"density_band", 1.0}, {"initial_density", normalised}}}}}}};
+                         {"properties", {{"density_band", 1.0}, {"initial_density", normalised != 0}}}}}}};
 }
 
 // Σ_j dp² W(|x_j|) over an infinite square lattice: what eq. 8 gives an
@@ -100,7 +100,7 @@ TEST_CASE("quick static tank keeps the hydrostatic pressure with the normalised 
     json scene = quick_tank_scene();
     // eq. 9: the continuity density filtered by the normalised summation
     const json summation = {{"name", "sph_density_summation"}, {"material", "water"},
-                            {"properties", {{"boundary_group", 1}, {"normalised", 1}}}};
+                            {"properties", {{"boundary_group", "boundary"}, {"normalised", true}}}};
     scene["passes"].insert(scene["passes"].begin() + 2, summation);
     const TankFigures t = run_tank(scene);
     CHECK(t.pressure_l2 <= 0.04);

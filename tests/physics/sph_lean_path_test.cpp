@@ -68,7 +68,7 @@ TEST_CASE("SPH forces through the packed centre path equal the full-column path'
     // forces take the full-column path; the summation pass (stage 5)
     // overwrites the integrated density, so the flow must be the same
     json full = lean;
-    full["passes"].push_back({{"name", "sph_density_integration"}, {"properties", {{"boundary_group", 1}}}});
+    full["passes"].push_back({{"name", "sph_density_integration"}, {"properties", {{"boundary_group", "boundary"}}}});
     const Outcome a = run(lean, 1), b = run(full, 1);
     CHECK(a.max_abs_drho_dt == 0.0);  // skipped: nothing read the continuity sum
     CHECK_FALSE(a.drho_dt_computed);  // so outputs must not write its zeros
@@ -124,7 +124,7 @@ TEST_CASE("centre forces between balls with every DOF fixed are not computed, an
     json free_spin = still;
     for (int b = 2; b < 5; ++b) free_spin["bodies"][b]["fix"] = {"translation"};
     json still_full = still;  // World::compute, not force_sweep
-    still_full["passes"].push_back({{"name", "sph_density_integration"}, {"properties", {{"boundary_group", 1}}}});
+    still_full["passes"].push_back({{"name", "sph_density_integration"}, {"properties", {{"boundary_group", "boundary"}}}});
     struct Run { std::uint64_t hash; std::size_t in_range, with_force; };
     auto run_scene = [](const json& scene) {
         Simulation sim(scene);

@@ -75,7 +75,7 @@ json free_blob(int dim) {
                          {"box", box}, {"radius", dp / 2}, {"spacing", dp}, {"mass", mass}, {"fix", {"rotation"}},
                          {"jitter", {{"position", 0.1 * dp}, {"velocity", 0.3}, {"seed", 3}}}}}},
             {"contact_models", {{{"groups", {"fluid", "fluid"}}, {"model", "sph"},
-                                 {"properties", {{"smoothing_length", h}, {"kernel", 0}, {"viscosity", 0}, {"speed_of_sound", 10}, {"mu", 1e-3}}}}}},
+                                 {"properties", {{"smoothing_length", h}, {"kernel", "wendland_c2"}, {"viscosity", "laminar"}, {"speed_of_sound", 10}, {"mu", 1e-3}}}}}},
             {"passes", {{{"name", "sph_density_integration"}},
                         // a free blob expands into vacuum: its density falls far below rho0 by design
                         {{"name", "sph_eos"}, {"properties", {{"speed_of_sound", 10}, {"density_band", 1.0}}}}}}};

@@ -28,14 +28,14 @@ json fluid_scene(const json& fluid_box, double dp, const json& boundary_blocks, 
             {"gravity", {0, -gravity}},
             {"plugins", {"sph", "sph_passes"}},
             {"bodies", bodies},
-            {"materials", {{"water", {{"groups", {"fluid", "boundary"}}, {"smoothing_length", 1.3 * dp}, {"kernel", 0},
+            {"materials", {{"water", {{"groups", {"fluid", "boundary"}}, {"smoothing_length", 1.3 * dp}, {"kernel", "wendland_c2"},
                                       {"rest_density", 1000}, {"speed_of_sound", c0}, {"gamma", 7}}}}},
             {"contact_models", {{{"groups", {"fluid", "fluid"}}, {"model", "sph"}, {"properties", sph}},
                                 {{"groups", {"fluid", "boundary"}}, {"model", "sph"}, {"properties", sph}}}},
-            {"passes", {{{"name", "sph_density_integration"}, {"properties", {{"boundary_group", 1}}}},
-                        {{"name", "sph_eos"}, {"material", "water"}, {"properties", {{"boundary_group", 1}}}},
+            {"passes", {{{"name", "sph_density_integration"}, {"properties", {{"boundary_group", "boundary"}}}},
+                        {{"name", "sph_eos"}, {"material", "water"}, {"properties", {{"boundary_group", "boundary"}}}},
                         {{"name", "sph_wall_pressure"}, {"material", "water"},
-                         {"properties", {{"boundary_group", 1}, {"no_slip", no_slip}}}}}}};
+                         {"properties", {{"boundary_group", "boundary"}, {"no_slip", no_slip != 0}}}}}}};
 }
 
 json box(double x0, double y0, double x1, double y1) { return {{"min", {x0, y0}}, {"max", {x1, y1}}}; }
@@ -80,7 +80,7 @@ TEST_CASE("a no-slip wall set moving drags the fluid as in Stokes' first problem
     const double dp = 0.0025, L = 0.2, H = 0.05, U = 0.01, mu = 1.0, nu = mu / 1000, t_end = 0.1;
     const double layers = 6 * dp / 2;  // covers the support 2h = 2.6 dp
     const json wall = testing_support::boundary_block(-0.05, -layers, L + 0.05, 0, dp / 2);
-    const json sph = {{"viscosity", 0}, {"mu", mu}};
+    const json sph = {{"viscosity", "laminar"}, {"mu", mu}};
     json scene = fluid_scene(box(0, 0, L, H), dp, json::array({wall}), sph, 1.0, 1);
     scene["commands"] = {{{"set", {{"group", "boundary"}, {"velocity", {U, 0}}}}}};
     Simulation sim(scene);
@@ -121,7 +121,7 @@ TEST_CASE("a piston pushing into fluid at rest feels the water-hammer pressure a
     const json blocks = {testing_support::boundary_block(-t, -t, L + 0.1, 0, dp / 2),
                          testing_support::boundary_block(-t, H, L + 0.1, H + t, dp / 2),
                          testing_support::boundary_block(-t, 0, 0, H, dp / 2)};  // the piston
-    const json sph = {{"viscosity", 1}, {"alpha", 0.1}};
+    const json sph = {{"viscosity", "artificial"}, {"alpha", 0.1}};
     json scene = fluid_scene(box(0, 0, L, H), dp, blocks, sph, c0, 1);
     // the scene's `set` command gives the piston balls (fixed: they keep it) their velocity
     scene["commands"] = {{{"set", {{"group", "boundary"}, {"region", box(-1, 1e-6, 0, H - 1e-6)}, {"velocity", {u, 0}}}}}};
@@ -192,12 +192,13 @@ TEST_CASE("delta-SPH diffuses a density spike and conserves the fluid volume to 
     // denser particle: Islam eq. 6's diffusion alone acts. Each step,
     // sum_i V_i drho_i = 0 (V_i = m_i/rho_i): the pair terms are antisymmetric in volume.
     const double dp = 0.01;
-    json scene = fluid_scene(box(0, 0, 0.1, 0.1), dp, json::array(), {{"viscosity", 1}, {"density_diffusion", 0.1}},
+    json scene = fluid_scene(box(0, 0, 0.1, 0.1), dp, json::array(), {{"viscosity", "artificial"}, {"density_diffusion", 0.1}},
                              10.0, 1);
     scene["bodies"][0]["fix"] = {"all"};
     scene["contact_models"].erase(1);  // no boundary in this scene
     scene["passes"].erase(2);
     scene["materials"]["water"]["groups"] = {"fluid"};
+    for (int p : {0, 1}) scene["passes"][p]["properties"]["boundary_group"] = nullptr;
     Simulation sim(scene);
     sim.set_quiet(true);
     World& w = sim.world();
@@ -236,7 +237,7 @@ TEST_CASE("fluid in a tank accelerating upward holds the pressure rho0 (g + a)(H
     const double dp = 0.01;
     const TankFigures with = run_tank(quick_tank_scene({{"variables.tank_acceleration", 2 * 9.81}}));
     const TankFigures without = run_tank(quick_tank_scene(
-        {{"variables.tank_acceleration", 2 * 9.81}, {"passes.2.properties.wall_acceleration", 0}}));
+        {{"variables.tank_acceleration", 2 * 9.81}, {"passes.2.properties.wall_acceleration", false}}));
     INFO("pressure L2 with the a_w term " << with.pressure_l2 << ", without " << without.pressure_l2
          << "; clearance " << with.min_clearance << " / " << without.min_clearance
          << "; displacement " << with.max_displacement << " / " << without.max_displacement);

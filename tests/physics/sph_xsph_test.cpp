@@ -17,7 +17,7 @@ constexpr double dp = 0.01;
 // A 10 x 10 block of fluid, no walls, no gravity, on a lattice with random
 // velocities of up to 0.3 m/s per component (thermal-like noise, c0 10 m/s).
 json noisy_block(double epsilon) {
-    const json water = {{"groups", {"fluid"}}, {"smoothing_length", 1.3 * dp}, {"kernel", 1},
+    const json water = {{"groups", {"fluid"}}, {"smoothing_length", 1.3 * dp}, {"kernel", "cubic"},
                         {"rest_density", 1000}, {"speed_of_sound", 10}, {"gamma", 7}};
     json passes = {{{"name", "sph_density_integration"}},
                    // a free block expands into vacuum: its density falls below rho0 by design

@@ -6,8 +6,8 @@
 #include "test_models.hpp"
 struct FieldProbe : SpringBase {
     static constexpr const char* name = "field_probe";
-    static constexpr plab_field_desc fields_read[] = {{"probe_value", "1", 2.0}};
-    static constexpr plab_field_desc fields_accumulated[] = {{"probe_sum", "1", 0.0}, {"probe_claims", "1", 0.0}};
+    static constexpr plab_field_desc fields_read[] = {plab::field_desc("probe_value", "1", 2.0)};
+    static constexpr plab_field_desc fields_accumulated[] = {plab::field_desc("probe_sum", "1", 0.0), plab::field_desc("probe_claims", "1", 0.0)};
     using SpringBase::SpringBase;
     void law(const plab::Contact& c) const {
         c.set_force(k * c.overlap() * c.normal());

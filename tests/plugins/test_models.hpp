@@ -7,7 +7,7 @@ struct SpringBase {
     static constexpr const char* timestep_rule = "sqrt(m/k)";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
     static constexpr plab_property_desc properties[] = {
-        {"k", "stiffness", "N/m", 1e5, 0.0, 1e12, PLAB_MIN_EXCLUSIVE, "spring"}};
+        plab::prop::number("k", "stiffness", "N/m", 1e5, 0.0, 1e12, PLAB_MIN_EXCLUSIVE, "spring")};
     static double activity_range(const double*) { return 0.0; }
     explicit SpringBase(const double* p) : k(p[0]) {}
     double k;

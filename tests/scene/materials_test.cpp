@@ -25,11 +25,11 @@ json two_ball_scene() {
         {"type": "ball", "group": "boundary", "position": [0, 0], "radius": 0.0025, "mass": 0.025, "fix": ["all"]}
       ],
       "materials": {"water": {"groups": ["fluid", "boundary"], "rest_density": 1000, "speed_of_sound": 15,
-                              "gamma": 7, "smoothing_length": 0.012, "kernel": 0}},
-      "contact_models": [{"groups": ["fluid", "boundary"], "model": "sph", "properties": {"viscosity": 1}}],
+                              "gamma": 7, "smoothing_length": 0.012, "kernel": "wendland_c2"}},
+      "contact_models": [{"groups": ["fluid", "boundary"], "model": "sph", "properties": {"viscosity": "artificial"}}],
       "passes": [
-        {"name": "sph_eos", "material": "water", "properties": {"boundary_group": 1}},
-        {"name": "sph_wall_pressure", "material": "water", "properties": {"boundary_group": 1}}
+        {"name": "sph_eos", "material": "water", "properties": {"boundary_group": "boundary"}},
+        {"name": "sph_wall_pressure", "material": "water", "properties": {"boundary_group": "boundary"}}
       ]
     })");
 }

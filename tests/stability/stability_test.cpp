@@ -295,7 +295,7 @@ json small_dam_break(double mach_factor, double jitter = 0, double scale = 1) {
     const double g = 9.81, a = 0.04 * scale, H = 0.08 * scale, dp = 0.01 * scale, db = dp / 2, h = 1.3 * dp;
     const double t = std::ceil(2 * h / db) * db, length = 0.2 * scale;
     const double c0 = mach_factor * std::sqrt(2 * g * H);
-    const json sph = {{"smoothing_length", h}, {"kernel", 0}, {"speed_of_sound", c0}, {"viscosity", 1}, {"alpha", 0.1}};
+    const json sph = {{"smoothing_length", h}, {"kernel", "wendland_c2"}, {"speed_of_sound", c0}, {"viscosity", "artificial"}, {"alpha", 0.1}};
     auto block = [db](double x0, double y0, double x1, double y1) { return testing_support::boundary_block(x0, y0, x1, y1, db); };
     json fluid = {{"type", "lattice"}, {"group", "fluid"}, {"packing", "square"},
                   {"box", {{"min", {0, 0}}, {"max", {a, H}}}}, {"radius", dp / 2}, {"spacing", dp},
@@ -307,11 +307,11 @@ json small_dam_break(double mach_factor, double jitter = 0, double scale = 1) {
             {"bodies", {fluid, block(-t, -t, length + t, 0), block(-t, 0, 0, 2 * H), block(length, 0, length + t, 2 * H)}},
             {"contact_models", {{{"groups", {"fluid", "fluid"}}, {"model", "sph"}, {"properties", sph}},
                                 {{"groups", {"fluid", "boundary"}}, {"model", "sph"}, {"properties", sph}}}},
-            {"passes", {{{"name", "sph_density_integration"}, {"properties", {{"boundary_group", 1}}}},
-                        {{"name", "sph_eos"}, {"properties", {{"speed_of_sound", c0}, {"boundary_group", 1},
+            {"passes", {{{"name", "sph_density_integration"}, {"properties", {{"boundary_group", "boundary"}}}},
+                        {{"name", "sph_eos"}, {"properties", {{"speed_of_sound", c0}, {"boundary_group", "boundary"},
                                                               {"hydrostatic_gravity", g}, {"surface_level", H}}}},
-                        {{"name", "sph_wall_pressure"}, {"properties", {{"smoothing_length", h}, {"kernel", 0},
-                                                                        {"speed_of_sound", c0}, {"boundary_group", 1},
+                        {{"name", "sph_wall_pressure"}, {"properties", {{"smoothing_length", h}, {"kernel", "wendland_c2"},
+                                                                        {"speed_of_sound", c0}, {"boundary_group", "boundary"},
                                                                         {"gravity_y", -g}}}}}}};
 }
 

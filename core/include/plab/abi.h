@@ -6,10 +6,17 @@
  * A library exports two symbols:
  *   uint32_t plab_plugin_abi_version(void);        -- PLAB_ABI_VERSION it was built with
  *   int      plab_plugin_init(const plab_registrar*);  -- registers its models/passes
- * The host checks the version before calling init and refuses a version
- * outside [PLAB_ABI_OLDEST, PLAB_ABI_VERSION].
+ * The host checks the version before calling init: it loads a plug-in of its
+ * own major version (PLAB_ABI_MAJOR) and a minor version no newer than its
+ * own, and refuses any other by name (a plug-in of ABI 1 returns 1 to 7).
  *
- * What each version added, and how older plug-ins still load: docs/abi-changes.md.
+ * Every struct that crosses the boundary begins with its size in bytes
+ * (`size`), set by whoever fills it (the C++ adapters do it for a plug-in):
+ * a later minor version may append members, and the reader of a struct
+ * refuses one smaller than it needs. An array of descriptions is read with
+ * the stride of its first element's size.
+ *
+ * What each version changed: docs/abi-changes.md.
  *
  * Contact models are called once per *batch* of contacts over host-owned
  * structure-of-arrays data (plab_contact_batch). A batch may hold only
@@ -35,24 +42,60 @@
 extern "C" {
 #endif
 
-#define PLAB_ABI_VERSION 7u
-#define PLAB_ABI_OLDEST 1u /* oldest plug-in ABI this host still loads */
+#define PLAB_ABI_MAJOR 2u
+#define PLAB_ABI_MINOR 0u
+/* what plab_plugin_abi_version() returns: major << 16 | minor (ABI 1
+ * returned its plain version number, 1 to 7, whose major reads as 0) */
+#define PLAB_ABI_VERSION ((PLAB_ABI_MAJOR << 16) | PLAB_ABI_MINOR)
 
 /* ---- descriptions ------------------------------------------------------ */
 
-/* Range flags of a property: the bounds are inclusive unless flagged. */
+/* What a property's value is. The value handed to the plug-in is always a
+ * double (in `props`, in declaration order); the kind says how the scene
+ * writes it and how the host checks it. */
+#define PLAB_KIND_NUMBER 0u  /* a real number in [min_value, max_value] */
+#define PLAB_KIND_INTEGER 1u /* a whole number in [min_value, max_value] (a count) */
+#define PLAB_KIND_BOOL 2u    /* true / false in the scene; 1 / 0 to the plug-in */
+#define PLAB_KIND_CHOICE 3u  /* one of `choices` by name in the scene; its index to the plug-in */
+#define PLAB_KIND_GROUP 4u   /* a group by name in the scene; its index to the plug-in
+                              * (groups are numbered in the order the scene first names them) */
+
+/* Flags of a property. The bounds of a number or integer are inclusive
+ * unless flagged. */
 #define PLAB_MIN_EXCLUSIVE 1u
 #define PLAB_MAX_EXCLUSIVE 2u
-#define PLAB_INTEGER 4u /* a whole number (a mode or a count) */
+#define PLAB_GROUP_NONE_ALLOWED 8u /* kind GROUP: the scene may say null or "none",
+                                    * handed as -1 (then the default); without it
+                                    * the scene must name a group */
+
+/* How the host combines the values two materials give a property when a
+ * contact rule joins groups of different materials (scene.materials):
+ * harmonic 2ab/(a+b), arithmetic (a+b)/2, geometric sqrt(ab), max, min.
+ * PLAB_MIX_NONE: the two must agree (the host refuses the rule otherwise).
+ * Only numbers mix; an integer may take max or min. */
+#define PLAB_MIX_NONE 0u
+#define PLAB_MIX_HARMONIC 1u
+#define PLAB_MIX_ARITHMETIC 2u
+#define PLAB_MIX_GEOMETRIC 3u
+#define PLAB_MIX_MAX 4u
+#define PLAB_MIX_MIN 5u
 
 typedef struct plab_property_desc {
+    uint32_t size;        /* sizeof(plab_property_desc) */
+    uint32_t kind;        /* PLAB_KIND_* */
     const char* key;      /* scene key, e.g. "kn" */
     const char* name;     /* field vocabulary, e.g. "normal stiffness" */
-    const char* unit;     /* SI unit, e.g. "N/m"; "1" for dimensionless */
-    double default_value; /* used when the scene does not set it */
-    double min_value;     /* valid range [min, max] (see flags) */
-    double max_value;
-    uint32_t flags;
+    const char* unit;     /* SI unit, e.g. "N/m"; "1" for dimensionless (and for
+                           * bools, choices and groups) */
+    double default_value; /* used when the scene does not set it: a number, 0/1
+                           * for a bool, an index into `choices`, -1 for a group
+                           * (none, or: the scene must name one) */
+    double min_value;     /* number, integer: valid range [min, max] (see flags); */
+    double max_value;     /* the host ignores them for the other kinds */
+    uint32_t flags;       /* PLAB_MIN_EXCLUSIVE, PLAB_MAX_EXCLUSIVE, PLAB_GROUP_NONE_ALLOWED */
+    uint32_t mixing;      /* PLAB_MIX_* */
+    const char* const* choices; /* kind CHOICE: choice_count names (e.g. "cubic"), */
+    uint32_t choice_count;      /* value i is choices[i]; NULL / 0 otherwise */
     const char* doc;
 } plab_property_desc;
 
@@ -61,6 +104,7 @@ typedef struct plab_property_desc {
 #define PLAB_SWAP_NEGATE 1u /* component of a vector acting on end 2 */
 
 typedef struct plab_history_desc {
+    uint32_t size; /* sizeof(plab_history_desc) */
     const char* name;
     double default_value;
     uint32_t swap_rule;
@@ -73,6 +117,7 @@ typedef struct plab_history_desc {
 
 /* A per-body field a model or pass reads, or accumulates into. */
 typedef struct plab_field_desc {
+    uint32_t size;    /* sizeof(plab_field_desc) */
     const char* name; /* e.g. "sph_density" */
     const char* unit;
     double default_value;
@@ -85,6 +130,7 @@ typedef struct plab_field_desc {
  * points from end 1 to end 2 and `force` is the force acting ON END 2 (end 1
  * receives -force), as in PFC. */
 typedef struct plab_contact_batch {
+    uint32_t size;       /* sizeof(plab_contact_batch), set by the host */
     uint32_t dim;        /* 2 or 3 */
     uint32_t count;      /* contacts in this batch */
     uint32_t end2_is_wall; /* 1: end 2 is a wall facet (infinite mass) */
@@ -138,7 +184,7 @@ typedef struct plab_contact_batch {
     double* const* accumulate2;
     double* break_energy;    /* elastic energy a bond released by breaking this step, J */
     uint32_t stage;          /* PLAB_STAGE_FORCES, or PLAB_STAGE_RATES for a model with rates_stage */
-    /* since ABI 7: bit f (f < 64) set: body_fields[f] holds the default
+    /* bit f (f < 64) set: body_fields[f] holds the default
      * the model declared for it at every body, in this call (the host
      * checked: nothing in the scene writes the field, and its values are
      * the default). A model may then take the default instead of reading
@@ -155,6 +201,7 @@ typedef struct plab_contact_batch {
 #define PLAB_STAGE_RATES 1u
 
 typedef struct plab_contact_model_desc {
+    uint32_t size;    /* sizeof(plab_contact_model_desc) */
     const char* name; /* as named in scenes, e.g. "linear" */
     const char* doc;
     uint32_t property_count;
@@ -185,17 +232,17 @@ typedef struct plab_contact_model_desc {
     /* 1: call compute() in the rates stage too (see PLAB_STAGE_RATES); its
      * accumulations are summed after that stage, not after the force stage */
     uint32_t rates_stage;
-    /* since ABI 4: PLAB_MODEL_* bits (0 for a plug-in of ABI 3 or older) */
+    /* PLAB_MODEL_* bits */
     uint32_t flags;
-    /* since ABI 5: PLAB_IO_* bits (0 for a plug-in of ABI 4 or older) */
+    /* PLAB_IO_* bits (0: every input and output, see below) */
     uint32_t io;
 } plab_contact_model_desc;
 
-/* `io` (since ABI 5): what a model reads and writes beyond what every model
+/* `io`: what a model reads and writes beyond what every model
  * gets (end1, end2, active, normal, gap, distance, rel_velocity, history,
  * dt, body fields) and must write (force; strain, slip and dashpot energy and
  * stiffness_translational, zeroed by the host). Without PLAB_IO_DECLARED
- * the host provides and reads back everything, as before ABI 5. With it,
+ * the host provides and reads back everything. With it,
  * the host skips the inputs and outputs not named: an input not named is
  * not computed (it may hold NaN), an output not named is neither zeroed nor
  * read (pure moments and rotational stiffness count as zero, dt_limit as
@@ -215,7 +262,7 @@ typedef struct plab_contact_model_desc {
 #define PLAB_IO_BREAK_ENERGY 2048u       /* output: break_energy */
 #define PLAB_IO_KNOWN_BITS (PLAB_IO_DECLARED | 62u | 256u | 512u | 1024u | 2048u)
 
-/* PLAB_MODEL_FORCE_AT_CENTRES (since ABI 4): the pair force acts between the
+/* PLAB_MODEL_FORCE_AT_CENTRES: the pair force acts between the
  * two particle centres, as in SPH (an interaction of points, not a touching
  * surface). For its ball-ball contacts the host passes the relative velocity
  * of the centres and zero rel_angular_velocity, applies no moment (neither
@@ -234,7 +281,7 @@ typedef struct plab_contact_model_desc {
 #define PLAB_PHASE_POST_FORCE 1u /* after forces are summed onto bodies */
 #define PLAB_PHASE_INTEGRATE 2u  /* after the law of motion, integrate own fields */
 #define PLAB_PHASE_RATES_DONE 3u /* after the rates stage, before forces: rates → states */
-/* since ABI 3: after the first half kick (velocities at t + dt/2, positions
+/* after the first half kick (velocities at t + dt/2, positions
  * and contacts of the last force pass), before the drift; a pass of this
  * phase may fill the fields named below, which the drift adds to the
  * velocity it moves a body with (e.g. XSPH, thesis eq. 18). The velocity
@@ -245,6 +292,7 @@ typedef struct plab_contact_model_desc {
 #define PLAB_DRIFT_CORRECTION_Z "drift_velocity_correction_z"
 
 typedef struct plab_pass_view {
+    uint32_t size; /* sizeof(plab_pass_view), set by the host */
     uint32_t dim;
     uint32_t body_count;
     double dt;
@@ -263,29 +311,30 @@ typedef struct plab_pass_view {
     const int32_t* contact_end1;
     const int32_t* contact_end2;
     const uint8_t* contact_end2_is_wall;
-    /* since ABI 2: a pass that returns PLAB_PASS_UNSTABLE writes one line
+    /* a pass that returns PLAB_PASS_UNSTABLE writes one line
      * here, "QUANTITY: which body, the value against its bound; likely
      * cause: ..." (NUL-terminated, at most diagnostic_capacity bytes
-     * including the NUL). Older passes never touch it. Name a body as
+     * including the NUL). Name a body as
      * "ball index N", N its index in this view: the host replaces that with
      * the ball's id and group, which is how the user knows it. */
     char* diagnostic;
     uint32_t diagnostic_capacity;
-    /* since ABI 6: |x(contact_end2) - x(contact_end1)| of each listed
+    /* |x(contact_end2) - x(contact_end1)| of each listed
      * contact, m (for a ball–wall contact the ball centre's distance to the
      * wall), as the host's range test computed it at the current positions;
      * NULL when the host has none for this list (e.g. a pass phase after the
      * positions moved): then compute it from `position`. Read it only when
-     * not NULL; a pass for older hosts never sees it. */
+     * not NULL. */
     const double* contact_distance;
 } plab_pass_view;
 
 /* Return codes of plab_pass_desc.run: 0 success; PLAB_PASS_UNSTABLE the
- * state is unphysical (since ABI 2; see plab_pass_view.diagnostic); any
+ * state is unphysical (see plab_pass_view.diagnostic); any
  * other non-zero value a failure of the pass itself. */
 #define PLAB_PASS_UNSTABLE 3
 
 typedef struct plab_pass_desc {
+    uint32_t size;           /* sizeof(plab_pass_desc) */
     const char* name;
     const char* doc;
     uint32_t phase;
@@ -308,6 +357,7 @@ typedef struct plab_pass_desc {
  * none. The bytes are the pass's own format: it should begin them with its
  * own version number so a later build can load an older checkpoint or refuse. */
 typedef struct plab_pass_state_hooks {
+    uint32_t size;         /* sizeof(plab_pass_state_hooks) */
     const char* pass_name; /* a pass this library registered */
     /* Writes the state into out[0..capacity) and returns the bytes it needs;
      * the host calls again with a larger buffer when that exceeds capacity. */
@@ -321,11 +371,9 @@ typedef struct plab_pass_state_hooks {
 
 /* The host hands a registrar to plab_plugin_init. The descriptions passed in
  * must stay valid while the library is loaded (static storage). Each call
- * returns 0 when accepted.
- *
- * register_pass_state is new in ABI 2 (appended: plug-ins built against
- * ABI 1 never read it, so they load unchanged). */
+ * returns 0 when accepted. */
 typedef struct plab_registrar {
+    uint32_t size; /* sizeof(plab_registrar), set by the host */
     void* host;
     int (*register_contact_model)(void* host, const plab_contact_model_desc* desc);
     int (*register_pass)(void* host, const plab_pass_desc* desc);

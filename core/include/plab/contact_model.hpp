@@ -8,9 +8,9 @@
 //       static constexpr const char* doc = "...";
 //       static constexpr const char* timestep_rule = "...";
 //       static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
-//       static constexpr plab_property_desc properties[] = {...};
+//       static constexpr plab_property_desc properties[] = {plab::prop::number(...), ...};
 //       enum Slot : int { ..., slot_count };            // history slots
-//       static constexpr plab_history_desc history[] = {...};  // slot_count entries
+//       static constexpr plab_history_desc history[] = {plab::history_desc(...), ...};  // slot_count entries
 //       static double activity_range(const double* props);
 //       explicit MyModel(const double* props);
 //       void law(plab::Contact& c) const;
@@ -30,6 +30,11 @@
 // outputs it writes, e.g. `PLAB_IO_EFF_MASS` for a law that reads only the
 // effective mass besides normal, gap and relative velocity; the host then
 // skips the rest (PLAB_IO_DECLARED is added for you).
+//
+// Descriptions are built with the constexpr functions below, which set each
+// struct's `size` (abi.h): a property of each kind (plab::prop::number,
+// integer, boolean, choice, group, optional_group), a history slot
+// (plab::history_desc) and a body field (plab::field_desc).
 #ifndef PLAB_CONTACT_MODEL_HPP
 #define PLAB_CONTACT_MODEL_HPP
 
@@ -67,6 +72,61 @@
 #endif
 
 namespace plab {
+
+// Property descriptions, one function per kind (abi.h PLAB_KIND_*). The law
+// reads every kind as a double: a bool as 0/1, a choice as the index of its
+// name, a group as the group's index (-1: none).
+namespace prop {
+
+// A real number in [lo, hi] (flags PLAB_MIN_EXCLUSIVE / PLAB_MAX_EXCLUSIVE);
+// `mixing` (PLAB_MIX_*): how two materials' values combine in a contact
+// between them.
+constexpr plab_property_desc number(const char* key, const char* name, const char* unit, double default_value,
+                                    double lo, double hi, uint32_t flags, const char* doc,
+                                    uint32_t mixing = PLAB_MIX_NONE) {
+    return {sizeof(plab_property_desc), PLAB_KIND_NUMBER, key, name, unit, default_value, lo, hi, flags, mixing,
+            nullptr, 0, doc};
+}
+// A whole number in [lo, hi] (a count); mixing may be PLAB_MIX_MAX or MIN.
+constexpr plab_property_desc integer(const char* key, const char* name, const char* unit, double default_value,
+                                     double lo, double hi, const char* doc, uint32_t mixing = PLAB_MIX_NONE) {
+    return {sizeof(plab_property_desc), PLAB_KIND_INTEGER, key, name, unit, default_value, lo, hi, 0u, mixing,
+            nullptr, 0, doc};
+}
+// true / false in the scene, 1 / 0 to the law.
+constexpr plab_property_desc boolean(const char* key, const char* name, bool default_value, const char* doc) {
+    return {sizeof(plab_property_desc), PLAB_KIND_BOOL, key, name, "1", default_value ? 1.0 : 0.0, 0.0, 1.0, 0u,
+            PLAB_MIX_NONE, nullptr, 0, doc};
+}
+// One of `names` in the scene (e.g. {"wendland_c2", "cubic", "quintic"}, a
+// static array), the index of the name to the law; the default is an index.
+template <std::size_t N>
+constexpr plab_property_desc choice(const char* key, const char* name, const char* const (&names)[N],
+                                    uint32_t default_index, const char* doc) {
+    return {sizeof(plab_property_desc), PLAB_KIND_CHOICE, key, name, "1", double(default_index), 0.0, double(N - 1),
+            0u, PLAB_MIX_NONE, names, uint32_t(N), doc};
+}
+// A group the scene must name; its index to the law.
+constexpr plab_property_desc group(const char* key, const char* name, const char* doc) {
+    return {sizeof(plab_property_desc), PLAB_KIND_GROUP, key, name, "1", -1.0, -1.0, 0.0, 0u, PLAB_MIX_NONE,
+            nullptr, 0, doc};
+}
+// A group or none (null / "none" in the scene, the default): -1 to the law.
+constexpr plab_property_desc optional_group(const char* key, const char* name, const char* doc) {
+    return {sizeof(plab_property_desc), PLAB_KIND_GROUP, key, name, "1", -1.0, -1.0, 0.0, PLAB_GROUP_NONE_ALLOWED,
+            PLAB_MIX_NONE, nullptr, 0, doc};
+}
+
+} // namespace prop
+
+// A history slot: name, default, what it does when the ends swap (PLAB_SWAP_*).
+constexpr plab_history_desc history_desc(const char* name, double default_value, uint32_t swap_rule, const char* doc) {
+    return {sizeof(plab_history_desc), name, default_value, swap_rule, doc};
+}
+// A per-body field: name, SI unit, default.
+constexpr plab_field_desc field_desc(const char* name, const char* unit, double default_value) {
+    return {sizeof(plab_field_desc), name, unit, default_value};
+}
 
 // One contact of a batch: typed access to the host's columns at index k.
 class Contact {
@@ -109,7 +169,7 @@ public:
         return b_.end2_is_wall ? std::numeric_limits<double>::quiet_NaN() : b_.body_fields[f][b_.end2[k_]];
     }
     // true: field f holds its declared default at every body in this batch
-    // (abi.h, ABI 7), so a law may take the default without reading it
+    // (abi.h, body_fields_at_default), so a law may take the default without reading it
     bool field_at_default(int f) const { return f < 64 && ((b_.body_fields_at_default >> f) & 1u); }
     void accumulate1(int f, double v) const { b_.accumulate1[f][k_] += v; }
     void accumulate2(int f, double v) const { b_.accumulate2[f][k_] += v; }
@@ -177,6 +237,7 @@ template <class M> void destroy(void* p) noexcept { delete static_cast<M*>(p); }
 // per contact costs about as much as the geometry of an inactive one.
 template <class M> int compute(void* inst, const double*, const plab_contact_batch* b) noexcept {
     if (!inst) return 1;
+    if (b->size < sizeof(plab_contact_batch)) return 4;  // a host older than these headers
     const M& model = *static_cast<const M*>(inst);
     constexpr uint32_t chunk = 256;
     uint32_t active[chunk], inactive[chunk];
@@ -226,6 +287,7 @@ template <class M> int compute(void* inst, const double*, const plab_contact_bat
 template <class M> const plab_contact_model_desc* contact_model_desc() {
     static const plab_contact_model_desc d = [] {
         plab_contact_model_desc x{};
+        x.size = sizeof(plab_contact_model_desc);
         x.name = M::name;
         x.doc = M::doc;
         x.property_count = detail::count_of(M::properties);
@@ -259,6 +321,7 @@ template <class M> const plab_contact_model_desc* contact_model_desc() {
 }
 
 template <class M> int add_contact_model(const plab_registrar* r) {
+    if (r->size < sizeof(plab_registrar)) return 1;  // a host older than these headers
     return r->register_contact_model(r->host, contact_model_desc<M>());
 }
 

@@ -6,8 +6,8 @@
 //       static constexpr const char* name = "my_pass";
 //       static constexpr const char* doc = "...";
 //       static constexpr uint32_t phase = PLAB_PHASE_POST_FORCE, stage = 0;
-//       static constexpr plab_property_desc properties[] = {...};  // may be empty via `properties_none`
-//       static constexpr plab_field_desc fields[] = {...};
+//       static constexpr plab_property_desc properties[] = {plab::prop::...};  // optional
+//       static constexpr plab_field_desc fields[] = {plab::field_desc(...), ...};
 //       explicit MyPass(const double* props);
 //       void run(const plab_pass_view& v);
 //       // optional, for a pass that keeps state between cycles (checkpoints):
@@ -18,7 +18,7 @@
 //
 // A pass that checks a physical bound (SPH density near rho0) throws
 // plab::UnstableState from run(): the host stops the run with its message
-// and keeps the last good state (ABI 2, PLAB_PASS_UNSTABLE).
+// and keeps the last good state (abi.h, PLAB_PASS_UNSTABLE).
 #ifndef PLAB_PASS_HPP
 #define PLAB_PASS_HPP
 
@@ -58,6 +58,7 @@ template <class P> int load_pass_state(void* state, const unsigned char* data, u
 
 template <class P> int run_pass(void* state, const double*, const plab_pass_view* v) noexcept {
     if (!state) return 1;
+    if (v->size < sizeof(plab_pass_view)) return 4;  // a host older than these headers
     try {
         static_cast<P*>(state)->run(*v);
     } catch (const UnstableState& u) {
@@ -77,6 +78,7 @@ template <class P> int run_pass(void* state, const double*, const plab_pass_view
 template <class P> const plab_pass_desc* pass_desc() {
     static const plab_pass_desc d = [] {
         plab_pass_desc x{};
+        x.size = sizeof(plab_pass_desc);
         x.name = P::name;
         x.doc = P::doc;
         x.phase = P::phase;
@@ -96,9 +98,10 @@ template <class P> const plab_pass_desc* pass_desc() {
 }
 
 template <class P> int add_pass(const plab_registrar* r) {
+    if (r->size < sizeof(plab_registrar)) return 1;  // a host older than these headers
     const int rc = r->register_pass(r->host, pass_desc<P>());
     if constexpr (detail::has_state<P>::value) {
-        static const plab_pass_state_hooks hooks{P::name, &detail::save_pass_state<P>, &detail::load_pass_state<P>};
+        static const plab_pass_state_hooks hooks{sizeof(plab_pass_state_hooks), P::name, &detail::save_pass_state<P>, &detail::load_pass_state<P>};
         if (rc == 0) return r->register_pass_state(r->host, &hooks);
     }
     return rc;

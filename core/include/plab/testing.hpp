@@ -5,6 +5,8 @@
 // because model and test live in the same program).
 //
 //   plab::testing::Probe p(plab::contact_model_desc<Hertz>(), {{"E", 7e10}});
+//   // a choice by name: the index its law reads (a bool is 0/1, a group its index)
+//   plab::testing::Probe q(desc, {{"dp_mode", plab::testing::choice_index(desc, "dp_mode", "no_tension")}});
 //   p.mass1 = 0.01; p.radius1 = 0.005; p.wall = true;
 //   plab::Vec3 f = p.force(-1e-6);                  // force on end 2 at 1 um overlap
 //   plab::testing::Impact im = p.impact(1.0, 1e-8); // head-on impact at 1 m/s
@@ -30,13 +32,38 @@ struct Impact {
     long steps = 0;          // steps in contact
 };
 
+// The index of the choice `name` of the choice property `key` of a model
+// (abi.h PLAB_KIND_CHOICE): the value its law reads.
+inline double choice_index(const plab_contact_model_desc* d, const std::string& key, const std::string& name) {
+    for (uint32_t p = 0; p < d->property_count; ++p) {
+        const plab_property_desc& q = d->properties[p];
+        if (key != q.key) continue;
+        if (q.kind != PLAB_KIND_CHOICE) throw std::invalid_argument("property '" + key + "' is not a choice");
+        for (uint32_t c = 0; c < q.choice_count; ++c)
+            if (name == q.choices[c]) return double(c);
+        throw std::invalid_argument("'" + name + "' is not a choice of property '" + key + "'");
+    }
+    throw std::invalid_argument("model " + std::string(d->name) + " has no property '" + key + "'");
+}
+
 class Probe {
 public:
-    // Property values: the model's defaults, then `overrides` by key.
+    // Property values: the model's defaults, then `overrides` by key (as the
+    // law reads them: a bool 0/1, a choice its index, see choice_index()).
     Probe(const plab_contact_model_desc* desc, const std::vector<std::pair<std::string, double>>& overrides = {})
         : d_(desc) {
         for (uint32_t p = 0; p < d_->property_count; ++p) props_.push_back(d_->properties[p].default_value);
-        for (const auto& [key, value] : overrides) props_.at(index_of(key)) = value;
+        for (const auto& [key, value] : overrides) {
+            const std::size_t p = index_of(key);
+            const plab_property_desc& q = d_->properties[p];
+            const bool whole = std::floor(value) == value;
+            if ((q.kind == PLAB_KIND_BOOL && value != 0 && value != 1) ||
+                (q.kind == PLAB_KIND_CHOICE && !(whole && value >= 0 && value < q.choice_count)) ||
+                (q.kind == PLAB_KIND_INTEGER && !whole))
+                throw std::invalid_argument("value " + std::to_string(value) + " is not a value property '" + key +
+                                            "' can take (a bool 0/1, a choice's index, a whole number)");
+            props_[p] = value;
+        }
         instance_ = d_->create(props_.data());
         reset_history();
     }
@@ -72,7 +99,7 @@ public:
         const int32_t e1 = 0, e2 = 1;
         const uint8_t active = gap <= d_->activity_range(props_.data()) ? 1 : 0;
         out_ = Outputs{};
-        plab_contact_batch b{};
+        plab_contact_batch b{sizeof(plab_contact_batch)};
         b.dim = uint32_t(dim); b.count = 1; b.end2_is_wall = wall ? 1u : 0u;
         b.history_stride = d_->history_count; b.dt = dt;
         b.end1 = &e1; b.end2 = &e2; b.active = &active;

@@ -213,7 +213,7 @@ int World::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::si
         a1[f] = s.acc1[f].data() + o;
         a2[f] = s.acc2[f].data() + o;
     }
-    plab_contact_batch batch{};
+    plab_contact_batch batch{sizeof(plab_contact_batch)};
     batch.dim = uint32_t(dim);
     batch.count = uint32_t(m);
     batch.end2_is_wall = s.with_wall;

@@ -213,7 +213,7 @@ double World::contact_gap(const ContactSet& s, std::size_t k) const {
 
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const ReadFields& fields) {
     if (d.count == 0) return 0;
-    plab_contact_batch batch{};
+    plab_contact_batch batch{sizeof(plab_contact_batch)};
     batch.dim = uint32_t(dim);
     batch.count = d.count;
     batch.end2_is_wall = 0;

@@ -61,38 +61,183 @@ std::string builtin_plugin_dir() {
     return PLAB_PLUGIN_DIR;
 }
 
+std::string too_small(const std::string& what, const char* type, uint32_t size, std::size_t needed) {
+    return what + " is " + std::to_string(size) + " bytes (its `size`), smaller than the " + std::to_string(needed) +
+           " bytes of " + type + " in plug-in ABI " + std::to_string(PLAB_ABI_MAJOR) + "." +
+           std::to_string(PLAB_ABI_MINOR) + "; rebuild it against this ParticleLab's headers";
+}
+
+// The host's copy of a plug-in's description array, read with the stride of
+// its first element's `size` (abi.h); false (and a problem) when an element
+// is smaller than this host's struct.
+template <class T>
+bool copy_array(const T* src, uint32_t n, const std::string& what, const char* type, std::vector<T>& out,
+                std::vector<std::string>& bad) {
+    out.clear();
+    if (n == 0) return true;
+    if (!src) {
+        bad.push_back(what + " count is " + std::to_string(n) + " but the array is NULL");
+        return false;
+    }
+    const uint32_t stride = src->size;
+    if (stride < sizeof(T)) {
+        bad.push_back(too_small("each " + what + " description", type, stride, sizeof(T)));
+        return false;
+    }
+    const char* base = reinterpret_cast<const char*>(src);
+    for (uint32_t i = 0; i < n; ++i) {
+        const T* e = reinterpret_cast<const T*>(base + std::size_t(i) * stride);
+        if (e->size != stride) {
+            bad.push_back(what + " #" + std::to_string(i) + " has size " + std::to_string(e->size) + ", the first " +
+                          std::to_string(stride) + " (one array, one struct size)");
+            return false;
+        }
+        T c;
+        std::memcpy(&c, e, sizeof(T));
+        c.size = uint32_t(sizeof(T));
+        out.push_back(c);
+    }
+    return true;
+}
+
+template <class T> const T* data_or_null(const std::vector<T>& v) { return v.empty() ? nullptr : v.data(); }
+
+// The refusal of a library built for another plug-in ABI (abi.h: version =
+// major << 16 | minor; ABI 1 returned 1 to 7).
+std::string abi_mismatch(const std::string& path, uint32_t version) {
+    const uint32_t major = version >> 16, minor = version & 0xffffu;
+    const std::string ours = std::to_string(PLAB_ABI_MAJOR) + "." + std::to_string(PLAB_ABI_MINOR);
+    const std::string lib = "plug-in library " + path;
+    if (major == 0 && minor >= 1 && minor <= 7)
+        return lib + " was built against plug-in ABI 1 (version " + std::to_string(minor) + "); rebuild it against ABI " +
+               std::to_string(PLAB_ABI_MAJOR) + " (this ParticleLab's headers: property kinds and struct sizes, "
+               "docs/abi-changes.md)";
+    if (major == PLAB_ABI_MAJOR)
+        return lib + " was built against plug-in ABI " + std::to_string(major) + "." + std::to_string(minor) +
+               ", newer than this plab's " + ours + "; use a newer plab or rebuild it against this ParticleLab's headers";
+    return lib + " reports plug-in ABI version " + std::to_string(version) + " (major " + std::to_string(major) +
+           "), which this plab does not speak (it speaks ABI " + ours + "); rebuild it against this ParticleLab's headers";
+}
+
 } // namespace
 
+const char* kind_name(uint32_t kind) {
+    switch (kind) {
+    case PLAB_KIND_NUMBER: return "number";
+    case PLAB_KIND_INTEGER: return "integer";
+    case PLAB_KIND_BOOL: return "bool";
+    case PLAB_KIND_CHOICE: return "choice";
+    case PLAB_KIND_GROUP: return "group";
+    default: return "unknown";
+    }
+}
+
+const char* mixing_name(uint32_t mixing) {
+    switch (mixing) {
+    case PLAB_MIX_NONE: return "none";
+    case PLAB_MIX_HARMONIC: return "harmonic";
+    case PLAB_MIX_ARITHMETIC: return "arithmetic";
+    case PLAB_MIX_GEOMETRIC: return "geometric";
+    case PLAB_MIX_MAX: return "max";
+    case PLAB_MIX_MIN: return "min";
+    default: return "unknown";
+    }
+}
+
 std::string range_text(const plab_property_desc& p) {
-    return std::string(p.flags & PLAB_MIN_EXCLUSIVE ? "(" : "[") + fmt(p.min_value) + ", " + fmt(p.max_value) +
-           (p.flags & PLAB_MAX_EXCLUSIVE ? ")" : "]") + (p.flags & PLAB_INTEGER ? ", whole numbers" : "");
+    switch (p.kind) {
+    case PLAB_KIND_BOOL: return "true or false";
+    case PLAB_KIND_CHOICE: {
+        std::vector<std::string> names;
+        for (uint32_t c = 0; p.choices && c < p.choice_count; ++c) names.push_back(p.choices[c] ? p.choices[c] : "?");
+        return "one of " + join(names);
+    }
+    case PLAB_KIND_GROUP: return p.flags & PLAB_GROUP_NONE_ALLOWED ? "a group name, or none" : "a group name";
+    default:
+        return std::string(p.flags & PLAB_MIN_EXCLUSIVE ? "(" : "[") + fmt(p.min_value) + ", " + fmt(p.max_value) +
+               (p.flags & PLAB_MAX_EXCLUSIVE ? ")" : "]") + (p.kind == PLAB_KIND_INTEGER ? ", whole numbers" : "");
+    }
 }
 
 bool in_range(const plab_property_desc& p, double v) {
     if (std::isnan(v)) return false;
-    const bool lo = (p.flags & PLAB_MIN_EXCLUSIVE) ? v > p.min_value : v >= p.min_value;
-    const bool hi = (p.flags & PLAB_MAX_EXCLUSIVE) ? v < p.max_value : v <= p.max_value;
-    const bool whole = !(p.flags & PLAB_INTEGER) || std::floor(v) == v;
-    return lo && hi && whole;
+    const bool whole = std::floor(v) == v;
+    switch (p.kind) {
+    case PLAB_KIND_BOOL: return v == 0.0 || v == 1.0;
+    case PLAB_KIND_CHOICE: return whole && v >= 0.0 && v < double(p.choice_count);
+    case PLAB_KIND_GROUP: return whole && (v >= 0.0 || (v == -1.0 && (p.flags & PLAB_GROUP_NONE_ALLOWED)));
+    default: {
+        const bool lo = (p.flags & PLAB_MIN_EXCLUSIVE) ? v > p.min_value : v >= p.min_value;
+        const bool hi = (p.flags & PLAB_MAX_EXCLUSIVE) ? v < p.max_value : v <= p.max_value;
+        return lo && hi && (p.kind != PLAB_KIND_INTEGER || whole);
+    }
+    }
 }
 
 std::vector<std::string> check_properties(const plab_property_desc* p, uint32_t n) {
     std::vector<std::string> bad;
     if (n > 0 && !p) bad.push_back("property_count > 0 but properties is NULL");
     for (uint32_t i = 0; p && i < n; ++i) {
-        const std::string key = p[i].key ? p[i].key : "#" + std::to_string(i);
-        if (!p[i].key || !*p[i].key) bad.push_back("property " + key + " has no key");
-        if (!p[i].name || !*p[i].name) bad.push_back("property " + key + " has no name");
-        if (!p[i].unit || !*p[i].unit)
+        const plab_property_desc& q = p[i];
+        const std::string key = q.key ? q.key : "#" + std::to_string(i);
+        if (!q.key || !*q.key) bad.push_back("property " + key + " has no key");
+        if (!q.name || !*q.name) bad.push_back("property " + key + " has no name");
+        if (!q.unit || !*q.unit)
             bad.push_back("property " + key + " has no SI unit (use \"1\" for a dimensionless one)");
-        if (!p[i].doc) bad.push_back("property " + key + " has no doc text");
-        if (std::isnan(p[i].min_value) || std::isnan(p[i].max_value) || p[i].min_value > p[i].max_value)
-            bad.push_back("property " + key + " has no valid range (min <= max, not NaN)");
-        else if (!in_range(p[i], p[i].default_value))
-            bad.push_back("property " + key + " default " + fmt(p[i].default_value) + " is outside its range " +
-                          range_text(p[i]));
+        if (!q.doc) bad.push_back("property " + key + " has no doc text");
+        if (q.flags & ~uint32_t(PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE | PLAB_GROUP_NONE_ALLOWED))
+            bad.push_back("property " + key + " has flags this host does not know (abi.h)");
+        if (q.mixing > PLAB_MIX_MIN)
+            bad.push_back("property " + key + " has a mixing rule this host does not know (abi.h PLAB_MIX_*)");
+        else if (q.mixing != PLAB_MIX_NONE && q.kind != PLAB_KIND_NUMBER &&
+                 !(q.kind == PLAB_KIND_INTEGER && (q.mixing == PLAB_MIX_MAX || q.mixing == PLAB_MIX_MIN)))
+            bad.push_back("property " + key + " is of kind " + kind_name(q.kind) + ", which cannot mix by " +
+                          mixing_name(q.mixing) + " (numbers mix; an integer by max or min only)");
+        if ((q.flags & PLAB_GROUP_NONE_ALLOWED) && q.kind != PLAB_KIND_GROUP)
+            bad.push_back("property " + key + " has PLAB_GROUP_NONE_ALLOWED but is not of kind group");
+        if ((q.choices || q.choice_count) && q.kind != PLAB_KIND_CHOICE)
+            bad.push_back("property " + key + " has choices but is not of kind choice");
+        switch (q.kind) {
+        case PLAB_KIND_NUMBER:
+        case PLAB_KIND_INTEGER:
+            if (std::isnan(q.min_value) || std::isnan(q.max_value) || q.min_value > q.max_value)
+                bad.push_back("property " + key + " has no valid range (min <= max, not NaN)");
+            else if (!in_range(q, q.default_value))
+                bad.push_back("property " + key + " default " + fmt(q.default_value) + " is outside its range " +
+                              range_text(q));
+            break;
+        case PLAB_KIND_BOOL:
+            if (!in_range(q, q.default_value))
+                bad.push_back("property " + key + " (bool) default " + fmt(q.default_value) + " is not 0 or 1");
+            break;
+        case PLAB_KIND_CHOICE:
+            if (q.choice_count < 2 || !q.choices) {
+                bad.push_back("property " + key + " (choice) needs two or more choices (choices, choice_count)");
+                break;
+            }
+            for (uint32_t c = 0; c < q.choice_count; ++c) {
+                if (!q.choices[c] || !*q.choices[c]) {
+                    bad.push_back("property " + key + " has an empty choice name (#" + std::to_string(c) + ")");
+                    continue;
+                }
+                for (uint32_t e = 0; e < c; ++e)
+                    if (q.choices[e] && std::string(q.choices[e]) == q.choices[c])
+                        bad.push_back("property " + key + " names the choice \"" + q.choices[c] + "\" twice");
+            }
+            if (!in_range(q, q.default_value))
+                bad.push_back("property " + key + " (choice) default " + fmt(q.default_value) +
+                              " is not an index into its " + std::to_string(q.choice_count) + " choices");
+            break;
+        case PLAB_KIND_GROUP:
+            if (q.default_value != -1.0)
+                bad.push_back("property " + key + " (group) default " + fmt(q.default_value) +
+                              " is not -1 (a scene names its groups: there is no default group)");
+            break;
+        default:
+            bad.push_back("property " + key + " has an unknown kind " + std::to_string(q.kind) + " (abi.h PLAB_KIND_*)");
+        }
         for (uint32_t j = 0; j < i; ++j)
-            if (p[j].key && p[i].key && std::string(p[j].key) == p[i].key)
+            if (p[j].key && q.key && std::string(p[j].key) == q.key)
                 bad.push_back("property key " + key + " is declared twice");
     }
     return bad;
@@ -197,19 +342,15 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
             throw PluginError("plug-in library " + path + " has no entry point '" + sym +
                               "'; define it with PLAB_PLUGIN(...) from <plab/contact_model.hpp>");
     const uint32_t version = lib->get<uint32_t()>("plab_plugin_abi_version")();
-    if (version < PLAB_ABI_OLDEST || version > PLAB_ABI_VERSION)
-        throw PluginError("plug-in library " + path + " was built for plug-in ABI version " + std::to_string(version) +
-                          " but this plab speaks versions " + std::to_string(PLAB_ABI_OLDEST) + " to " +
-                          std::to_string(PLAB_ABI_VERSION) +
-                          "; rebuild it against this ParticleLab's headers");
+    if (version >> 16 != PLAB_ABI_MAJOR || (version & 0xffffu) > PLAB_ABI_MINOR)
+        throw PluginError(abi_mismatch(path, version));
     LoadedLibrary entry;
     entry.path = path;
     loading_ = path;
-    loading_version_ = version;
     problems_.clear();
     const auto before_models = models_;
     const auto before_passes = passes_;
-    plab_registrar reg{this, &cb_register_model, &cb_register_pass, &cb_register_pass_state};
+    plab_registrar reg{uint32_t(sizeof(plab_registrar)), this, &cb_register_model, &cb_register_pass, &cb_register_pass_state};
     const int rc = lib->get<int(const plab_registrar*)>("plab_plugin_init")(&reg);
     loading_.clear();
     if (rc != 0 || !problems_.empty()) {
@@ -233,14 +374,29 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
 
 int PluginHost::register_model(const plab_contact_model_desc* d) {
     if (!d) { problems_.push_back("register_contact_model(NULL)"); return 1; }
-    if (loading_version_ < 5) {  // its description ends before `flags` (ABI 4) or `io` (ABI 5)
-        plab_contact_model_desc full{};
-        std::memcpy(&full, d, loading_version_ < 4 ? offsetof(plab_contact_model_desc, flags)
-                                                   : offsetof(plab_contact_model_desc, io));
-        d = &upgraded_.emplace_back(full);
+    if (d->size < sizeof(plab_contact_model_desc)) {
+        problems_.push_back(too_small("a contact model description", "plab_contact_model_desc", d->size,
+                                      sizeof(plab_contact_model_desc)));
+        return 1;
     }
-    auto bad = check_model_desc(*d);
+    ModelCopy c;
+    std::memcpy(&c.desc, d, sizeof(plab_contact_model_desc));
+    c.desc.size = uint32_t(sizeof(plab_contact_model_desc));
     const std::string name = d->name ? d->name : "?";
+    std::vector<std::string> bad;
+    copy_array(d->properties, d->property_count, "property", "plab_property_desc", c.properties, bad);
+    copy_array(d->history, d->history_count, "history slot", "plab_history_desc", c.history, bad);
+    copy_array(d->fields_read, d->fields_read_count, "field read", "plab_field_desc", c.fields_read, bad);
+    copy_array(d->fields_accumulated, d->fields_accumulated_count, "field accumulated", "plab_field_desc",
+               c.fields_accumulated, bad);
+    if (!bad.empty()) { problems_.push_back("model '" + name + "': " + join(bad, "; ")); return 1; }
+    ModelCopy& m = model_copies_.emplace_back(std::move(c));
+    m.desc.properties = data_or_null(m.properties);
+    m.desc.history = data_or_null(m.history);
+    m.desc.fields_read = data_or_null(m.fields_read);
+    m.desc.fields_accumulated = data_or_null(m.fields_accumulated);
+    d = &m.desc;
+    bad = check_model_desc(*d);
     if (!bad.empty()) { problems_.push_back("model '" + name + "': " + join(bad, "; ")); return 1; }
     if (models_.count(name) || passes_.count(name)) {
         const std::string other = models_.count(name) ? model_lib_[name] : pass_lib_[name];
@@ -254,8 +410,23 @@ int PluginHost::register_model(const plab_contact_model_desc* d) {
 
 int PluginHost::register_pass(const plab_pass_desc* d) {
     if (!d) { problems_.push_back("register_pass(NULL)"); return 1; }
-    std::vector<std::string> bad = check_properties(d->properties, d->property_count);
+    if (d->size < sizeof(plab_pass_desc)) {
+        problems_.push_back(too_small("a pass description", "plab_pass_desc", d->size, sizeof(plab_pass_desc)));
+        return 1;
+    }
+    PassCopy c;
+    std::memcpy(&c.desc, d, sizeof(plab_pass_desc));
+    c.desc.size = uint32_t(sizeof(plab_pass_desc));
     const std::string name = d->name && *d->name ? d->name : "?";
+    std::vector<std::string> bad;
+    copy_array(d->properties, d->property_count, "property", "plab_property_desc", c.properties, bad);
+    copy_array(d->fields, d->field_count, "field", "plab_field_desc", c.fields, bad);
+    if (!bad.empty()) { problems_.push_back("pass '" + name + "': " + join(bad, "; ")); return 1; }
+    PassCopy& pc = pass_copies_.emplace_back(std::move(c));
+    pc.desc.properties = data_or_null(pc.properties);
+    pc.desc.fields = data_or_null(pc.fields);
+    d = &pc.desc;
+    bad = check_properties(d->properties, d->property_count);
     if (name == "?") bad.push_back("pass has no name");
     if (!d->run) bad.push_back("pass has no run function");
     if (d->phase > PLAB_PHASE_PRE_DRIFT) bad.push_back("pass has an unknown phase");
@@ -271,6 +442,11 @@ int PluginHost::register_pass(const plab_pass_desc* d) {
 }
 
 int PluginHost::register_pass_state(const plab_pass_state_hooks* h) {
+    if (h && h->size < sizeof(plab_pass_state_hooks)) {
+        problems_.push_back(too_small("the pass state hooks", "plab_pass_state_hooks", h->size,
+                                      sizeof(plab_pass_state_hooks)));
+        return 1;
+    }
     if (!h || !h->pass_name || !h->save || !h->load) {
         problems_.push_back("register_pass_state: hooks need a pass name, save and load");
         return 1;
@@ -280,7 +456,10 @@ int PluginHost::register_pass_state(const plab_pass_state_hooks* h) {
         problems_.push_back(std::string("register_pass_state: '") + h->pass_name + "' is not a pass of this library");
         return 1;
     }
-    pass_state_[h->pass_name] = h;
+    plab_pass_state_hooks& c = hook_copies_.emplace_back();
+    std::memcpy(&c, h, sizeof(plab_pass_state_hooks));
+    c.size = uint32_t(sizeof(plab_pass_state_hooks));
+    pass_state_[h->pass_name] = &c;
     return 0;
 }
 

@@ -1,5 +1,6 @@
 // The plug-in host: finds shared libraries, checks their ABI version, and
-// keeps the models and passes they register. Libraries stay loaded as long as
+// keeps the models and passes they register (as copies of their
+// descriptions, checked against the struct sizes this host needs). Libraries stay loaded as long as
 // the host lives; every world holds the host, so no model outlives its code.
 #pragma once
 
@@ -65,21 +66,41 @@ private:
     std::map<std::string, std::string> model_lib_, pass_lib_;
     std::map<std::string, const plab_pass_state_hooks*> pass_state_;
     std::string loading_;               // library being initialised
-    std::uint32_t loading_version_ = 0; // its plug-in ABI version
-    // descriptions of plug-ins older than ABI 4, copied up to `flags` and
-    // completed with zeros (their own struct ends before it)
-    std::list<plab_contact_model_desc> upgraded_;
+    // the host's copies of the descriptions registered (abi.h: each struct
+    // read by its own size), to which models_ and passes_ point
+    struct ModelCopy {
+        plab_contact_model_desc desc;
+        std::vector<plab_property_desc> properties;
+        std::vector<plab_history_desc> history;
+        std::vector<plab_field_desc> fields_read, fields_accumulated;
+    };
+    struct PassCopy {
+        plab_pass_desc desc;
+        std::vector<plab_property_desc> properties;
+        std::vector<plab_field_desc> fields;
+    };
+    std::list<ModelCopy> model_copies_;
+    std::list<PassCopy> pass_copies_;
+    std::list<plab_pass_state_hooks> hook_copies_;
     std::vector<std::string> problems_; // registration problems of `loading_`
 };
 
-// Checks a property list: names, units, ranges, defaults inside ranges.
-// Returns the problems found (empty: well-formed).
+// Checks a property list: sizes, kinds, names, units, ranges, choices,
+// mixing rules, defaults inside ranges. Returns the problems found (empty:
+// well-formed).
 std::vector<std::string> check_properties(const plab_property_desc* p, uint32_t n);
 // Checks a contact model description; returns the problems found.
 std::vector<std::string> check_model_desc(const plab_contact_model_desc& d);
 
-// "[min, max)" style text of a property's valid range.
+// "[min, max)" style text of a property's valid range; for a bool "true or
+// false", a choice "one of a, b, c", a group "a group name" (", or none").
 std::string range_text(const plab_property_desc& p);
+// v is a valid value of p as the plug-in sees it (a choice's index, a
+// bool's 0/1, a group index or -1 where none is allowed).
 bool in_range(const plab_property_desc& p, double v);
+// Names of the kinds and mixing rules ("number", "harmonic", ...);
+// "unknown" for a value abi.h does not define.
+const char* kind_name(uint32_t kind);
+const char* mixing_name(uint32_t mixing);
 
 } // namespace plab

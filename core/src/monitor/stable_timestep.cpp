@@ -51,7 +51,7 @@ StableStep probe_contact(const ModelInstance& inst, int dim, const Probe& a, con
     std::vector<const double*> cols(inst.fields_read.size() + 1, field_value.data());
     std::vector<double> acc(2 * inst.fields_accumulated.size() + 2, 0.0);
     std::vector<double*> acc1(inst.fields_accumulated.size() + 1, &acc[0]), acc2(inst.fields_accumulated.size() + 1, &acc[1]);
-    plab_contact_batch batch{};
+    plab_contact_batch batch{sizeof(plab_contact_batch)};
     batch.dim = uint32_t(dim);
     batch.count = 1;
     batch.end2_is_wall = wall;

@@ -106,7 +106,7 @@ void World::run_passes(std::uint32_t phase) {
         if (p.desc->phase != phase) continue;
         cols.clear();
         for (int f : p.fields) cols.push_back(fields.column(f).data());
-        plab_pass_view v{};
+        plab_pass_view v{sizeof(plab_pass_view)};
         v.dim = uint32_t(dim);
         v.body_count = uint32_t(bodies.size());
         v.dt = last_dt;

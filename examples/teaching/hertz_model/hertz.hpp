@@ -40,20 +40,23 @@ struct Hertz {
     enum Prop : int { youngs_modulus, poisson_ratio, restitution, fric, prop_count };
     static constexpr double inf = std::numeric_limits<double>::infinity();
     static constexpr plab_property_desc properties[] = {
-        {"E", "Young's modulus", "Pa", 70e9, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "of both ends (and of walls)"},
-        {"nu", "Poisson's ratio", "1", 0.25, 0.0, 0.5, PLAB_MAX_EXCLUSIVE, "of both ends"},
-        {"e", "coefficient of restitution", "1", 1.0, 0.0, 1.0, PLAB_MIN_EXCLUSIVE,
-         "sets the Tsuji damping ratio beta = -ln e / sqrt(ln^2 e + pi^2); 1: no damping"},
-        {"fric", "friction coefficient", "1", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE, "Coulomb limit |F_t| <= fric F_n"},
+        // two materials' E mix harmonically (with equal nu, Hertz's 1/E* = (1 - nu^2)(1/E1 + 1/E2)),
+        // their friction by the smaller; nu and e must agree
+        plab::prop::number("E", "Young's modulus", "Pa", 70e9, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
+         "of both ends (and of walls)", PLAB_MIX_HARMONIC),
+        plab::prop::number("nu", "Poisson's ratio", "1", 0.25, 0.0, 0.5, PLAB_MAX_EXCLUSIVE, "of both ends"),
+        plab::prop::number("e", "coefficient of restitution", "1", 1.0, 0.0, 1.0, PLAB_MIN_EXCLUSIVE,
+         "sets the Tsuji damping ratio beta = -ln e / sqrt(ln^2 e + pi^2); 1: no damping"),
+        plab::prop::number("fric", "friction coefficient", "1", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE, "Coulomb limit |F_t| <= fric F_n",
+         PLAB_MIX_MIN),
     };
 
     // Step 3: the tangential force is remembered between steps.
     enum Slot : int { shear_force_x, shear_force_y, shear_force_z, slot_count };
     static constexpr plab_history_desc history[] = {
-        {"shear_force_x", 0.0, PLAB_SWAP_NEGATE, "tangential force on end 2, global x, N"},
-        {"shear_force_y", 0.0, PLAB_SWAP_NEGATE, "tangential force on end 2, global y, N"},
-        {"shear_force_z", 0.0, PLAB_SWAP_NEGATE, "tangential force on end 2, global z, N"},
+        plab::history_desc("shear_force_x", 0.0, PLAB_SWAP_NEGATE, "tangential force on end 2, global x, N"),
+        plab::history_desc("shear_force_y", 0.0, PLAB_SWAP_NEGATE, "tangential force on end 2, global y, N"),
+        plab::history_desc("shear_force_z", 0.0, PLAB_SWAP_NEGATE, "tangential force on end 2, global z, N"),
     };
 
     // Only touching balls interact.
