@@ -1,6 +1,6 @@
 // Range test, packing and unpacking of ball–ball rows for the dense batch
 // (forces/packed_batch.hpp). The geometry is ball_pair_kinematics(), as in
-// ball_geometry_rows(); the sums are those of
+// ball_ball_geometry() (forces/geometry.cpp); the sums are those of
 // scatter_rows(), so results are the same bit for bit.
 #include "forces/packed_batch.hpp"
 #include "forces/row_lists.hpp"

@@ -8,6 +8,7 @@
 // steps that read it, World::contact_forces_wanted).
 #pragma once
 
+#include "forces/geometry.hpp"
 #include "world/world.hpp"
 
 #include <cstring>
@@ -125,33 +126,6 @@ struct OptionalInputs {
     }
 };
 
-// Whether a candidate (ball–ball or ball–wall) is in its model's range:
-// bonded rows always are; otherwise the gap or the centre distance, as the
-// model declares.
-struct RangeTest {
-    bool by_distance;
-    int persist;  // history slot that marks a bond, or -1
-    double range;
-    std::size_t stride;
-    explicit RangeTest(const ModelInstance& inst)
-        : by_distance(inst.desc->range_kind == PLAB_RANGE_DISTANCE), persist(inst.desc->persist_slot),
-          range(inst.range), stride(std::size_t(inst.stride)) {}
-    // The rule with the range kind and whether bonds count fixed at compile
-    // time (range_test_rows()'s candidate loop tests neither per row).
-    template <bool ByDistance, bool Bonds>
-    bool in(const double* history, std::size_t k, double dist, double gap) const {
-        const bool near = ByDistance ? dist <= range : gap <= range;
-        return Bonds ? near | (history[k * stride + std::size_t(persist)] > 0) : near;
-    }
-    bool operator()(const double* history, std::size_t k, double dist, double gap) const {
-        if (by_distance) return persist >= 0 ? in<true, true>(history, k, dist, gap) : in<true, false>(history, k, dist, gap);
-        return persist >= 0 ? in<false, true>(history, k, dist, gap) : in<false, false>(history, k, dist, gap);
-    }
-    bool operator()(const std::vector<double>& history, std::size_t k, double dist, double gap) const {
-        return (*this)(history.data(), k, dist, gap);
-    }
-};
-
 // The history of packed rows, in from the set's rows row[a] (gather) or back
 // out to them (scatter), in loops of their own: the packers' main loops keep
 // fewer values live, and a model's usual stride (3: a shear force) copies
@@ -175,51 +149,6 @@ inline void gather_history(double* dense, const double* set, const std::uint32_t
 inline void scatter_history(double* set, const double* dense, const std::uint32_t* row, std::size_t n, std::size_t stride) {
     if (stride == 3) scatter_history_rows<3>(set, dense, row, n, 3);
     else scatter_history_rows<0>(set, dense, row, n, stride);
-}
-
-// The surface gap of two balls at centre distance dist: every ball–ball
-// path (the range test, both packers, World::contact_gap) takes it from
-// here, so a gap recomputed for a reader has the range test's bits.
-inline double surface_gap(double dist, double ri, double rj) { return dist - ri - rj; }
-
-// The contact geometry of balls i and j at centre distance `dist`, gap `gap`:
-// normal from i to j, contact point in the middle of the overlap, and the
-// velocities of j relative to i at that point.
-struct PairKinematics {
-    Vec normal, point, rel_velocity, rel_angular_velocity;
-    Vec arm1, arm2;  // point - x_i and point - x_j: the lever arms of r x F
-};
-// The unit vector from xi to xj at centre distance dist: one division, not
-// three (every ball–ball path takes it from here, so all give the same bits).
-inline Vec centre_normal(const Vec& xi, const Vec& xj, double dist) {
-    return dist > 0 ? Vec((xj - xi) * (1.0 / dist)) : Vec::UnitX();
-}
-// centre_normal() in the plane (a 2D world: z = 0), the same arithmetic on
-// x and y; its z is zero.
-struct PlaneNormal { double x, y; };
-inline PlaneNormal centre_normal_2d(const Vec& xi, const Vec& xj, double dist) {
-    const double inv = 1.0 / dist;
-    const bool apart = dist > 0;  // (else the normal is x)
-    return {apart ? (xj.x() - xi.x()) * inv : 1.0, apart ? (xj.y() - xi.y()) * inv : 0.0};
-}
-// The contact point of two balls: on the normal from ball i's centre xi,
-// its radius ri plus half the gap further (the middle of the overlap).
-inline Vec ball_contact_point(const Vec& xi, const Vec& normal, double ri, double gap) {
-    return xi + normal * (ri + 0.5 * gap);
-}
-inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
-                                           double gap) {
-    const Vec& xi = B.position[i];
-    PairKinematics p;
-    p.normal = centre_normal(xi, B.position[j], dist);
-    p.point = ball_contact_point(xi, p.normal, ri, gap);
-    p.arm1 = p.point - xi;
-    p.arm2 = p.point - B.position[j];
-    const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(p.arm2);
-    const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(p.arm1);
-    p.rel_velocity = vj - vi;
-    p.rel_angular_velocity = B.angular_velocity[j] - B.angular_velocity[i];
-    return p;
 }
 
 // Points a batch view at rows [o, ...) of a set of contact columns with the

@@ -3,6 +3,7 @@
 #include "world/world.hpp"
 
 #include "common/buffers.hpp"
+#include "forces/geometry.hpp"
 #include "common/error.hpp"
 
 #include <algorithm>
@@ -344,7 +345,7 @@ void World::force_pass(double closing_kick) {
             ContactSet& s = *sets_[si];
             if (!s.with_wall && swept_) continue;  // geometry in the sweep
             geometry(inst, s);
-            if (s.with_wall) resolve_wall_features(s);
+            if (s.with_wall) resolve_wall_features(bodies, walls, s);
         }
         if (swept_ && rates_models) {
             // the passes that turn rates into states (e.g. summation density,

@@ -312,9 +312,6 @@ private:
     bool packs_balls(const ModelInstance& inst) const;
     void lay_out_columns(const ModelInstance& inst, ContactSet& set);
     void geometry(ModelInstance& inst, ContactSet& set);
-    bool geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
-    bool ball_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
-    bool wall_geometry_rows(const ModelInstance& inst, ContactSet& set, std::size_t begin, std::size_t end);
     std::size_t range_test_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin,
                                 std::size_t end, std::uint32_t* row, double* distance);
     bool pack_ball_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin, std::size_t end,
@@ -335,7 +332,6 @@ private:
     void find_fields_at_default();
     ReadFields read_fields(const ModelInstance& inst) const;
     [[noreturn]] void model_failed(const ModelInstance& inst) const;
-    void resolve_wall_features(ContactSet& set);
     void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
     void rates_stage();
     bool rates_stage_needed(const ModelInstance& inst) const;
