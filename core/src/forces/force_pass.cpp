@@ -414,20 +414,6 @@ bool World::reduce(double closing_kick) {
     return non_finite;
 }
 
-// Active contacts after this cycle's detection and geometry, for passes
-// (built only when a pass is loaded).
-void World::build_pass_contacts() {
-    if (passes_.empty()) return;
-    pc_end1_.clear(); pc_end2_.clear(); pc_wall_.clear();
-    for (const ContactSet* s : sets_)
-        for (std::size_t k = 0; k < s->size(); ++k)
-            if (s->active[k]) {
-                pc_end1_.push_back(s->end1[k]);
-                pc_end2_.push_back(s->end2[k]);
-                pc_wall_.push_back(s->with_wall);
-            }
-}
-
 // Models with a rates stage accumulate field rates (SPH continuity) over
 // this cycle's geometry; the sums land in their fields, then the passes of
 // phase RATES_DONE turn them into states before any force is computed.

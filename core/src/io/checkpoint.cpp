@@ -498,9 +498,9 @@ void WorldCheckpoint::save_detection(const World& w, CheckpointWriter& out) {
     w.sum_stiffness();
     out.column(w.k_trans_);
     out.column(w.k_rot_);
-    out.column(w.pc_end1_);
-    out.column(w.pc_end2_);
-    out.column(w.pc_wall_);
+    out.column(w.pass_contacts_.end1_column());
+    out.column(w.pass_contacts_.end2_column());
+    out.column(w.pass_contacts_.wall_column());
 }
 
 void WorldCheckpoint::save_passes(const World& w, CheckpointWriter& out) {
@@ -645,9 +645,9 @@ void WorldCheckpoint::load_detection(World& w, CheckpointReader& in) {
     w.k_trans_ = in.column<double>();
     w.k_rot_ = in.column<double>();
     w.stiffness_valid_ = true;  // the sums of the pass that made the saved forces
-    w.pc_end1_ = in.column<std::int32_t>();
-    w.pc_end2_ = in.column<std::int32_t>();
-    w.pc_wall_ = in.column<std::uint8_t>();
+    w.pass_contacts_.end1_column() = in.column<std::int32_t>();
+    w.pass_contacts_.end2_column() = in.column<std::int32_t>();
+    w.pass_contacts_.wall_column() = in.column<std::uint8_t>();
     if (reference_missing)
         in.fail("the neighbour-list reference positions do not match the bodies");
     if (w.prepared_ && (w.k_trans_.size() != w.bodies.size() || w.k_rot_.size() != w.bodies.size()))

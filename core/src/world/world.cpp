@@ -119,12 +119,12 @@ void World::run_passes(std::uint32_t phase) {
         v.mass = bodies.mass.data();
         v.group = bodies.group.data();
         v.fields = cols.data();
-        v.contact_count = uint32_t(pc_end1_.size());
-        v.contact_end1 = pc_end1_.data();
-        v.contact_end2 = pc_end2_.data();
-        v.contact_end2_is_wall = pc_wall_.data();
+        v.contact_count = uint32_t(pass_contacts_.size());
+        v.contact_end1 = pass_contacts_.end1();
+        v.contact_end2 = pass_contacts_.end2();
+        v.contact_end2_is_wall = pass_contacts_.end2_is_wall();
         // the distances hold at these positions while the range test's lists do
-        v.contact_distance = in_range_marked_ && pc_distance_.size() == pc_end1_.size() ? pc_distance_.data() : nullptr;
+        v.contact_distance = pass_contacts_.distance(in_range_marked_);
         char diagnostic[2048];  // room for a pass's advice (sph_eos: ~800 characters)
         diagnostic[0] = '\0';
         v.diagnostic = diagnostic;
@@ -356,9 +356,9 @@ void World::force_pass(double closing_kick) {
             in_range_marked_ = false;
         } else if (swept_) {
             for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
-            build_pass_contacts();  // the sweeps set the active flags
+            if (!passes_.empty()) pass_contacts_.list_active(sets_);  // the sweeps set the active flags
         } else {
-            build_pass_contacts();
+            if (!passes_.empty()) pass_contacts_.list_active(sets_);
             rates_stage();
             for (std::uint32_t m = 0; m < instances_.size(); ++m) {
                 ModelInstance& inst = *instances_[m];

@@ -11,6 +11,7 @@
 #include "contacts/body_contacts.hpp"
 #include "contacts/model_instance.hpp"
 #include "detection/neighbour_lists.hpp"
+#include "detection/range_test.hpp"
 #include "integration/leapfrog.hpp"
 #include "reduction/chunked_sums.hpp"
 #include "host/plugin_host.hpp"
@@ -233,7 +234,6 @@ private:
     // range of batch b, listed from b * kContactBatch, and their count; on
     // the centre-force path (`listed`, for pack_centre_rows()) their centre
     // distances too.
-    struct RowsInRange { std::vector<std::uint32_t> row, count; std::vector<double> distance; bool listed = false; };
     // The step limits (abi.h, dt_limit) of set si's centre-force sweep, per
     // batch: the least over its rows and the first row that has it, which
     // is all stable_timestep() takes from them. A per-pair limit (SPH's CFL)
@@ -262,11 +262,7 @@ private:
     mutable std::vector<double> k_trans_, k_rot_;
     mutable bool stiffness_valid_ = false;
     void sum_stiffness() const;
-    // active contacts for passes (built only when a pass is loaded)
-    std::vector<std::int32_t> pc_end1_, pc_end2_;
-    std::vector<std::uint8_t> pc_wall_;
-    std::vector<double> pc_distance_;  // their centre distances (mark_ball_rows_in_range(): abi.h, ABI 6)
-    std::vector<std::size_t> batch_at_;  // append_pass_contacts(): each batch's first place in the list
+    PassContacts pass_contacts_;  // the active contacts the passes see (only when a pass is loaded)
 
     // the kept copy: the contact rows whose history is not the model's
     // default, by ends; the others, and all geometry, come back with the
@@ -336,15 +332,8 @@ private:
     void rates_stage();
     bool rates_stage_needed(const ModelInstance& inst) const;
     void mark_ball_rows_in_range();  // detection/range_test.cpp
-    void mark_set_in_range(std::uint32_t set_index, std::size_t* listed);
-    void append_pass_contacts(std::uint32_t set_index, std::size_t& listed);
-    // The pass-contact columns at n rows. mark_ball_rows_in_range() refills
-    // them every cycle without emptying them first (resizing an emptied
-    // vector would clear the whole list, ~2 MB on the dam break, only to
-    // overwrite it): it grows them as it lists and shrinks them at the end.
-    void resize_pass_contacts(std::size_t n);
+    void mark_set_in_range(std::uint32_t set_index, bool list);
     void accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i);
-    void build_pass_contacts();
     void record_breaks(ModelInstance& inst, ContactSet& set);
     // closing_kick > 0: reduce() takes the step's closing half kick of that
     // length block by block, right after the block's force sums, while its
