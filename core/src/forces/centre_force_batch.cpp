@@ -77,7 +77,7 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
 // Back from the packed rows of batch [begin, end): history and force to
 // the set's columns (their readers: outputs, stress; the force only on a
 // step whose forces are read, World::contact_forces_wanted), the
-// batch's least step limit to World::batch_limits_ (the stable step), and
+// batch's least step limit to PackedTable::limits (the stable step), and
 // each row's force added, in row order, to the chunk's partial sums: -F on
 // end 1, +F on end 2, no moment.
 void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d,
@@ -122,8 +122,8 @@ void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
         if (with_z) f2[2] += fz;
     }
     if (held_body >= 0) put_back();
-    if (inst.uses(PLAB_IO_DT_LIMIT)) {  // the batch's least step limit, its first row (World::batch_limits_)
-        BatchLimit& least = batch_limits_[si][begin / kContactBatch];
+    if (inst.uses(PLAB_IO_DT_LIMIT)) {  // the batch's least step limit, its first row (PackedTable::limits)
+        BatchLimit& least = packed_[si].limits[begin / kContactBatch];
         for (std::size_t a = 0; a < d.count; ++a)
             if (d.dt_limit[a] < least.dt) least = {d.dt_limit[a], d.rows[a]};
     }

@@ -154,7 +154,7 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     const bool at_centres = (inst.desc->flags & PLAB_MODEL_FORCE_AT_CENTRES) != 0;
     const std::uint32_t c0 = sums_.first_chunk(si), c1 = sums_.end_chunk(si);
     if (dense && at_centres && inst.uses(PLAB_IO_DT_LIMIT))
-        batch_limits_[si].assign((n + kContactBatch - 1) / kContactBatch, BatchLimit{kInf, 0});
+        packed_[si].limits.assign((n + kContactBatch - 1) / kContactBatch, BatchLimit{kInf, 0});
     // a still set (still_centre_set) whose rows mark_ball_rows_in_range()
     // tested: nothing to pack, only its chunks' partial sums to clear
     const bool still = dense && at_centres && in_range_marked_ && si < in_range_.size() && in_range_[si].listed &&
@@ -534,8 +534,8 @@ StableStep World::stable_timestep() {
             limit_model = set_owner_[si]; limit_set = s; limit_row = k;
             ball = bodies.size();
         };
-        if (si < batch_limits_.size() && !batch_limits_[si].empty()) {  // (their rows are active)
-            for (const BatchLimit& b : batch_limits_[si]) consider(b.dt, b.row);
+        if (packed_.has_limits(si)) {  // (their rows are active)
+            for (const BatchLimit& b : packed_.limits(si)) consider(b.dt, b.row);
             continue;
         }
         if (s->dt_limit.empty()) continue;  // a set that keeps no step limit has none (ContactSet::keeps)

@@ -97,7 +97,7 @@ std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, 
     // raw pointers: the byte stores below (flags) may alias anything, so
     // the compiler would otherwise reload every column's address per row
     const RangeRows c{s.end1.data(), s.end2.data(), bodies.radius.data(), s.history.data(),
-                      bodies.position.data(), s.packed ? nullptr : s.gap.data(), s.active.data(), live_[si].data(),
+                      bodies.position.data(), s.packed ? nullptr : s.gap.data(), s.active.data(), packed_[si].live.data(),
                       dim == 2};
     std::uint32_t idle[kContactBatch];
     double unused[kContactBatch];  // where an output the caller does not take goes
@@ -274,6 +274,38 @@ UnpackedSums unpack_loop(ContactSet& s, const DenseBatch& d, double* fm, std::si
 }
 } // namespace
 
+namespace {
+
+// Rows [begin, end) of an output column filled with one value, unless the
+// last fill already left it there.
+void hold_value(double* col, std::size_t width, double u, std::size_t begin, std::size_t end, HeldOutputs& held,
+                int which) {
+    if (held.uniform[which] && bits(held.value[which]) == bits(u)) return;
+    held.uniform[which] = true;
+    held.value[which] = u;
+    std::fill(col + width * begin, col + width * end, u);
+}
+
+// One output column (`width` doubles per row) back from the packed rows of
+// batch [begin, end). Most models give many outputs one value for every
+// contact (no pure moments, a constant stiffness, no step limit): then the
+// whole batch is filled with it once, and later steps that give the same
+// value write nothing. Values are compared bit for bit.
+void write_back(double* col, std::size_t width, const double* dense, const DenseBatch& d, std::size_t begin,
+                std::size_t end, HeldOutputs& held, int which) {
+    const std::size_t n = width * d.count;
+    if (n == 0) return;  // no row to report: what the column holds is not read
+    const double u = dense[0];
+    bool same = true;
+    for (std::size_t i = 1; i < n; ++i) same &= bits(dense[i]) == bits(u);
+    if (same) return hold_value(col, width, u, begin, end, held, which);
+    held.uniform[which] = false;
+    for (std::size_t a = 0; a < d.count; ++a)
+        for (std::size_t c = 0; c < width; ++c) col[width * d.row[a] + c] = dense[width * a + c];
+}
+
+} // namespace
+
 // Back from the packed rows of batch [begin, end): history, and what the
 // readers of the contact columns use (force, moments, stiffnesses, step
 // limit: outputs, stress, stable step, bond breaks, checkpoints; normal and
@@ -297,7 +329,7 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = 0;
     if (d.count == 0) return;  // no row to report: what the columns hold is not read
-    HeldOutputs& held = held_[si][begin / kContactBatch];
+    HeldOutputs& held = packed_[si].held[begin / kContactBatch];
     const std::size_t end = std::min(s.size(), begin + kContactBatch);
     // an output the model does not write is not kept by a packed set
     // (ContactSet::keeps), or holds its neutral value (abi.h, PLAB_IO_*)
@@ -313,34 +345,6 @@ void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const Dense
     else if (!s.k_r.empty()) hold_value(s.k_r.data(), 1, 0.0, begin, end, held, 3);
     if (inst.uses(PLAB_IO_DT_LIMIT)) write_back(s.dt_limit.data(), 1, d.dt_limit, d, begin, end, held, 4);
     else if (!s.dt_limit.empty()) hold_value(s.dt_limit.data(), 1, kInf, begin, end, held, 4);
-}
-
-// One output column (`width` doubles per row) back from the packed rows of
-// batch [begin, end). Most models give many outputs one value for every
-// contact (no pure moments, a constant stiffness, no step limit): then the
-// whole batch is filled with it once, and later steps that give the same
-// value write nothing. Values are compared bit for bit.
-void World::write_back(double* col, std::size_t width, const double* dense, const DenseBatch& d, std::size_t begin,
-                       std::size_t end, HeldOutputs& held, int which) {
-    const std::size_t n = width * d.count;
-    if (n == 0) return;  // no row to report: what the column holds is not read
-    const double u = dense[0];
-    bool same = true;
-    for (std::size_t i = 1; i < n; ++i) same &= bits(dense[i]) == bits(u);
-    if (same) return hold_value(col, width, u, begin, end, held, which);
-    held.uniform[which] = false;
-    for (std::size_t a = 0; a < d.count; ++a)
-        for (std::size_t c = 0; c < width; ++c) col[width * d.row[a] + c] = dense[width * a + c];
-}
-
-// Rows [begin, end) of an output column filled with one value, unless the
-// last fill already left it there.
-void World::hold_value(double* col, std::size_t width, double u, std::size_t begin, std::size_t end,
-                       HeldOutputs& held, int which) {
-    if (held.uniform[which] && bits(held.value[which]) == bits(u)) return;
-    held.uniform[which] = true;
-    held.value[which] = u;
-    std::fill(col + width * begin, col + width * end, u);
 }
 
 } // namespace plab

@@ -107,21 +107,10 @@ void World::build_entries() {
         listed[si] = !(sets_[si]->packed && (set_owner_[si]->desc->flags & PLAB_MODEL_FORCE_AT_CENTRES));
     body_contacts_.build(sets_, listed, bodies.size());
     sums_.build(sets_, parallel_min);
-    forget_held_outputs();
-    clear_batch_limits();  // (rows of the old list)
+    packed_.forget(sets_);
+    packed_.clear_limits(sets_.size());  // (rows of the old list)
     any_accumulation_ = false;
     for (auto& inst : instances_) any_accumulation_ |= !inst->desc->rates_stage && !inst->fields_accumulated.empty();
-}
-
-// The rows' history may be anything, and no output column is known to be
-// uniform: the columns were just made or loaded.
-void World::forget_held_outputs() {
-    held_.resize(sets_.size());
-    live_.resize(sets_.size());
-    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
-        held_[si].assign((sets_[si]->size() + kContactBatch - 1) / kContactBatch, HeldOutputs{});
-        live_[si].assign(sets_[si]->size(), 1);
-    }
 }
 
 } // namespace plab

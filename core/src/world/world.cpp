@@ -318,7 +318,7 @@ void World::force_pass(double closing_kick) {
     {
         PhaseTimer t{phase_seconds[ph_force]};
         find_fields_at_default();
-        clear_batch_limits();  // force_sweep() keeps those of centre-force sets, the columns the others'
+        packed_.clear_limits(sets_.size());  // force_sweep() keeps those of centre-force sets, the columns the others'
         // a pass added since the last rebuild may need a rates stage over
         // full columns that a packed set lacks (packs_balls)
         bool repacked = false;

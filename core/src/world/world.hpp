@@ -12,6 +12,7 @@
 #include "contacts/model_instance.hpp"
 #include "detection/neighbour_lists.hpp"
 #include "detection/range_test.hpp"
+#include "forces/packed_tables.hpp"
 #include "integration/leapfrog.hpp"
 #include "reduction/chunked_sums.hpp"
 #include "host/plugin_host.hpp"
@@ -215,17 +216,7 @@ private:
     std::vector<ContactSet*> sets_;
     std::vector<const ModelInstance*> set_owner_;
     ChunkedSums sums_;  // the deterministic reduction (reduction/chunked_sums.hpp)
-    // Per set and batch, for the outputs moment1, moment2, k_t, k_r,
-    // dt_limit: the value every row of the batch holds in the set's column,
-    // when they all hold the same (zero moments, a constant stiffness). The
-    // dense path then skips writing an unchanged output back (unpack_rows).
-    struct HeldOutputs { double value[5]; std::uint8_t uniform[5]; };
-    std::vector<std::vector<HeldOutputs>> held_;
-    // per set and row: the row may hold history other than the defaults (it
-    // was active at the last force pass, or came with its history from the
-    // last list): only such rows need their history reset when out of range
-    std::vector<std::vector<std::uint8_t>> live_;
-    void forget_held_outputs();
+    PackedTables packed_;  // what the packed paths keep per table (forces/packed_tables.hpp)
     bool any_accumulation_ = false;  // a force-stage model accumulates body fields
     bool swept_ = false;             // the last force pass ran force_sweep()
     bool contact_forces_kept_ = true;  // the last force pass wrote the packed rows' forces (contact_forces_wanted)
@@ -234,19 +225,6 @@ private:
     // range of batch b, listed from b * kContactBatch, and their count; on
     // the centre-force path (`listed`, for pack_centre_rows()) their centre
     // distances too.
-    // The step limits (abi.h, dt_limit) of set si's centre-force sweep, per
-    // batch: the least over its rows and the first row that has it, which
-    // is all stable_timestep() takes from them. A per-pair limit (SPH's CFL)
-    // is seldom uniform, and writing it row by row into a column as long as
-    // the candidate list cost a cache miss per pair. Empty: the set's
-    // dt_limit column holds its limits (cleared at every force pass and
-    // rebuild, so never older than the rows).
-    struct BatchLimit { double dt; std::uint32_t row; };
-    std::vector<std::vector<BatchLimit>> batch_limits_;
-    void clear_batch_limits() {
-        batch_limits_.resize(sets_.size());
-        for (auto& b : batch_limits_) b.clear();
-    }
     std::vector<RowsInRange> in_range_;
     void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end, const Chunk& chunk);
     void scatter_to_chunks(std::uint32_t set_index);
@@ -319,10 +297,6 @@ private:
                           DenseBatch& d);
     void unpack_centre_rows(std::uint32_t set_index, const ModelInstance& inst, const DenseBatch& d,
                             std::size_t begin, const Chunk& chunk);
-    void write_back(double* column, std::size_t width, const double* dense, const DenseBatch& d, std::size_t begin,
-                    std::size_t end, HeldOutputs& held, int which);
-    static void hold_value(double* column, std::size_t width, double value, std::size_t begin, std::size_t end,
-                           HeldOutputs& held, int which);
     int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
                    const ReadFields& fields, bool clear);
     void find_fields_at_default();
