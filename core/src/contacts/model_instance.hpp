@@ -6,6 +6,7 @@
 
 #include <plab/abi.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -30,5 +31,7 @@ struct ModelInstance {
     // `bit` (PLAB_IO_*): all of them unless it declared which (abi.h, ABI 5)
     bool uses(std::uint32_t bit) const { return !(desc->io & PLAB_IO_DECLARED) || (desc->io & bit); }
 };
+
+using Instances = std::vector<std::unique_ptr<ModelInstance>>;
 
 } // namespace plab

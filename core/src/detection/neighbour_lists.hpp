@@ -12,12 +12,9 @@
 #include "contacts/model_instance.hpp"
 
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 namespace plab {
-
-using Instances = std::vector<std::unique_ptr<ModelInstance>>;
 
 class NeighbourLists {
 public:

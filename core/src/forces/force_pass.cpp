@@ -87,53 +87,6 @@ void World::model_failed(const ModelInstance& inst) const {
                    std::to_string(step_count));
 }
 
-// Which model instances pair only balls that cannot move (every DOF
-// fixed): fixity may change between rebuilds (a `set` command, a case's
-// clamp), so this is found at every pass, a byte per ball, when a model
-// has centre forces.
-void World::find_still_instances() {
-    still_instance_.assign(instances_.size(), 0);
-    bool at_centres = false;
-    for (const auto& inst : instances_) at_centres |= (inst->desc->flags & PLAB_MODEL_FORCE_AT_CENTRES) != 0;
-    if (!at_centres) return;
-    const std::size_t ng = std::size_t(assignment_.group_count());
-    still_group_.assign(ng, 1);
-    const std::uint8_t* fixity = bodies.fixity.data();
-    const int* group = bodies.group.data();
-    // by runs of one group (bodies are made group by group): a flag in a
-    // register, not a load and store of the group's per body
-    for (std::size_t i = 0; i < bodies.size();) {
-        const int g = group[i];
-        bool still = true;
-        for (; i < bodies.size() && group[i] == g; ++i) still &= fixity[i] == dof_all;
-        still_group_[g] &= still;
-    }
-    std::fill(still_instance_.begin(), still_instance_.end(), 1);
-    for (std::size_t a = 0; a < ng; ++a)
-        for (std::size_t b = 0; b < ng; ++b) {
-            const int inst = assignment_.assigned(a, b);
-            if (inst >= 0 && !(still_group_[a] && still_group_[b])) still_instance_[inst] = 0;
-        }
-}
-
-// Centre forces between balls that cannot move (the boundary particles of
-// SPH) move nothing: the model is not asked for them, as Yade makes no
-// interaction between two bodies that are not dynamic. The rows stay in
-// the list and in range for the passes (density summation), with zero
-// force and no step limit, and add nothing to their balls.
-bool World::still_centre_set(std::uint32_t si) const {
-    const std::uint32_t m = si / 2;
-    return !sets_[si]->with_wall && m < still_instance_.size() && still_instance_[m] &&
-           (instances_[m]->desc->flags & PLAB_MODEL_FORCE_AT_CENTRES);
-}
-
-void World::hold_still(ContactSet& s) {
-    if (s.forces_zero) return;
-    std::fill(s.force.begin(), s.force.end(), 0.0);
-    std::fill(s.dt_limit.begin(), s.dt_limit.end(), kInf);  // (empty when the set keeps none)
-    s.forces_zero = true;
-}
-
 // The force pass of one set in a single sweep over its chunks (world.hpp),
 // batch by batch: geometry (ball–ball sets; a wall set has it done before,
 // because resolve_wall_features needs a ball's rows together), the model,
@@ -155,10 +108,10 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
     const std::uint32_t c0 = sums_.first_chunk(si), c1 = sums_.end_chunk(si);
     if (dense && at_centres && inst.uses(PLAB_IO_DT_LIMIT))
         packed_[si].limits.assign((n + kContactBatch - 1) / kContactBatch, BatchLimit{kInf, 0});
-    // a still set (still_centre_set) whose rows mark_ball_rows_in_range()
+    // a still table (StillInstances) whose rows mark_ball_rows_in_range()
     // tested: nothing to pack, only its chunks' partial sums to clear
     const bool still = dense && at_centres && in_range_marked_ && si < in_range_.size() && in_range_[si].listed &&
-                       still_centre_set(si);
+                       still_.centre_table_still(si, s, instances_);
     if (still) hold_still(s);
     else s.forces_zero = false;
     int failed = 0;

@@ -333,7 +333,7 @@ void World::force_pass(double closing_kick) {
         // (geometry, model, scatter to slots); a rates stage needs all the
         // geometry before any force. A rates stage whose sums nothing reads
         // is skipped (rates_stage_needed).
-        find_still_instances();
+        still_.find(bodies, assignment_, instances_);
         bool rates_models = false;
         swept_ = true;
         for (auto& inst : instances_) {
@@ -362,7 +362,7 @@ void World::force_pass(double closing_kick) {
             rates_stage();
             for (std::uint32_t m = 0; m < instances_.size(); ++m) {
                 ModelInstance& inst = *instances_[m];
-                if (still_centre_set(2 * m)) hold_still(inst.balls);  // (as force_sweep)
+                if (still_.centre_table_still(2 * m, inst.balls, instances_)) hold_still(inst.balls);  // (as force_sweep)
                 else compute(inst, inst.balls, PLAB_STAGE_FORCES);
                 compute(inst, inst.walls, PLAB_STAGE_FORCES);
             }

@@ -13,6 +13,7 @@
 #include "detection/neighbour_lists.hpp"
 #include "detection/range_test.hpp"
 #include "forces/packed_tables.hpp"
+#include "forces/still_instances.hpp"
 #include "integration/leapfrog.hpp"
 #include "reduction/chunked_sums.hpp"
 #include "host/plugin_host.hpp"
@@ -229,13 +230,7 @@ private:
     void scatter_rows(std::uint32_t set_index, std::size_t begin, std::size_t end, const Chunk& chunk);
     void scatter_to_chunks(std::uint32_t set_index);
     void force_sweep(std::uint32_t set_index, bool with_geometry);
-    // Per model instance: every ball of the groups it pairs has every DOF
-    // fixed (SPH boundary particles), found at each force pass; then no
-    // centre force of its ball–ball rows moves anything (force_sweep).
-    std::vector<std::uint8_t> still_instance_, still_group_;
-    void find_still_instances();
-    bool still_centre_set(std::uint32_t set_index) const;
-    static void hold_still(ContactSet& set);
+    StillInstances still_;  // instances of fixed balls only (forces/still_instances.hpp)
     // per-body stiffness sums of the last force pass, summed on demand
     mutable std::vector<double> k_trans_, k_rot_;
     mutable bool stiffness_valid_ = false;
