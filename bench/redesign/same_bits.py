@@ -28,8 +28,8 @@ CASES = [
 ]
 
 
-def derived_scene(name, steps):
-    scene = json.loads((ROOT / "bench" / "peers" / f"{name}.json").read_text())
+def derived_scene(name, steps, root=ROOT):
+    scene = json.loads((root / "bench" / "peers" / f"{name}.json").read_text())
     scene["commands"] = [{"cycle": steps}]
     scene.pop("histories", None)
     scene.pop("output", None)

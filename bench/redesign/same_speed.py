@@ -7,7 +7,10 @@ output), at 1 and 2 OpenMP threads, interleaved (old, new, old, new, ...)
 so that a change of machine load falls on both, and prints the median
 throughput (particle steps per second, from summary.json) of each and the
 ratio new/old. Each binary must find its own plug-ins (built in its own
-build tree). Nothing is asserted: the table is the result.
+build tree), and reads the scenes of its own checkout (BINARY/../../bench/
+peers, when there is one: a scene's spelling may change with the version,
+as the ABI 2 property names did). Nothing is asserted: the table is the
+result.
 
     bench/redesign/same_speed.py OLD_PLAB NEW_PLAB [--runs 3] [--threads 1 2]
 """
@@ -24,8 +27,14 @@ import tempfile
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from same_bits import derived_scene  # noqa: E402
 
+
 # scene, steps: long enough (3-10 s at one thread) that start-up is noise
 CASES = [("gran3d", 10000), ("gran2d", 10000), ("sph_double_dam_break", 1200)]
+
+
+def checkout_of(binary):
+    root = pathlib.Path(binary).resolve().parents[1]
+    return root if (root / "bench" / "peers").is_dir() else pathlib.Path(__file__).resolve().parents[2]
 
 
 def cpu_line():
@@ -63,14 +72,17 @@ def main():
     print(cpu_line())
     print(f"{'scene':22s} {'threads':>7s} {'old Mps/s':>10s} {'new Mps/s':>10s} {'new/old':>8s}  hashes")
     for name, steps in CASES:
-        scene_path = base / f"{name}.json"
-        scene_path.write_text(json.dumps(derived_scene(name, steps), indent=1))
+        scene_paths = {}
+        for which, binary in binaries.items():
+            scene_paths[which] = base / f"{name}_{which}.json"
+            scene_paths[which].write_text(json.dumps(derived_scene(name, steps, checkout_of(binary)), indent=1))
         for threads in args.threads:
             rates = {"old": [], "new": []}
             hashes = {"old": set(), "new": set()}
             for run in range(args.runs):
                 for which in ("old", "new"):
-                    rate, h = throughput(binaries[which], scene_path, base / f"{name}_{which}_{threads}_{run}", threads)
+                    rate, h = throughput(binaries[which], scene_paths[which], base / f"{name}_{which}_{threads}_{run}",
+                                         threads)
                     rates[which].append(rate)
                     hashes[which].add(h)
             old, new = statistics.median(rates["old"]), statistics.median(rates["new"])
