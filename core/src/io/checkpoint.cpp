@@ -735,7 +735,7 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
     load_log(w, in);
 
     w.nominal_valid_ = false;  // recomputed from the state, as the uninterrupted run did
-    w.snapshot_.valid = false;
+    w.last_good_.drop();
     // radii and masses of the ends from the bodies, whatever the file holds
     // (files written before they were kept for inactive rows lack them)
     for (auto& inst : w.instances_)

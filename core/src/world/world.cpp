@@ -167,11 +167,11 @@ void World::prepare() {
 // Models see the half-step velocity, as in PFC.
 void World::step() {
     at_last_good_ = false;
-    if (snapshot_interval > 0 && (step_count % snapshot_interval == 0 || !snapshot_.valid)) take_snapshot();
+    if (snapshot_interval > 0 && (step_count % snapshot_interval == 0 || !last_good_.valid())) take_snapshot();
     try {
         advance();
     } catch (const RunError& e) {
-        if (!snapshot_.valid) throw;
+        if (!last_good_.valid()) throw;
         const std::uint64_t failed_at = step_count;
         restore_snapshot();
         at_last_good_ = true;
@@ -182,60 +182,10 @@ void World::step() {
     }
 }
 
-namespace {
-
-// The rows of a set whose history differs from the model's defaults: a
-// row at its defaults is what the rebuild makes of a new pair.
-void keep_rows_with_history(const ModelInstance& inst, const ContactSet& c, std::vector<std::int32_t>& end1,
-                            std::vector<std::int32_t>& end2, std::vector<double>& history) {
-    const int stride = inst.stride;
-    auto fresh = [&](std::size_t k) {
-        const double* row = c.history.data() + k * stride;
-        bool at_defaults = true;
-        for (int h = 0; h < stride; ++h) at_defaults &= row[h] == inst.desc->history[h].default_value;
-        return at_defaults;
-    };
-    std::size_t kept = 0;  // counted first: room for these rows, not up to twice as many (buffers.hpp)
-    for (std::size_t k = 0; k < c.size(); ++k) kept += !fresh(k);
-    clear_for(end1, kept);
-    clear_for(end2, kept);
-    clear_for(history, kept * stride);
-    for (std::size_t k = 0; k < c.size(); ++k) {
-        if (fresh(k)) continue;
-        const double* row = c.history.data() + k * stride;
-        end1.push_back(c.end1[k]);
-        end2.push_back(c.end2[k]);
-        history.insert(history.end(), row, row + stride);
-    }
-}
-
-} // namespace
-
 void World::take_snapshot() {
     if (!prepared_) prepare();
-    Snapshot& s = snapshot_;
-    // only the motion: everything else about a body changes with
-    // mark_dirty() alone, which drops the snapshot (it never spans a change),
-    // and the force and moment totals follow from the state
-    s.position = bodies.position;
-    s.velocity = bodies.velocity;
-    s.angular_velocity = bodies.angular_velocity;
-    s.walls = walls;
-    s.fields = fields.columns();
-    s.energies = energies;
-    s.time = time;
-    s.last_dt = last_dt;
-    s.step_count = step_count;
-    s.bond_breaks = bond_breaks.size();
+    last_good_.keep(bodies, walls, fields, energies, {time, last_dt, step_count}, bond_breaks.size(), instances_);
     snapshot_stable_ = stable_timestep();
-    s.sets.resize(2 * instances_.size());  // copied into the last snapshot's buffers: no allocation
-    std::size_t k = 0;
-    for (const auto& inst : instances_)
-        for (const ContactSet* c : {&inst->balls, &inst->walls}) {
-            SetState& st = s.sets[k++];
-            keep_rows_with_history(*inst, *c, st.end1, st.end2, st.history);
-        }
-    s.valid = true;
     if (on_snapshot) on_snapshot();
 }
 
@@ -244,27 +194,13 @@ void World::take_snapshot() {
 // what is written at the stop (VTK, the last-good checkpoint) and the next
 // step see the forces of this state.
 void World::restore_snapshot() {
-    const Snapshot& s = snapshot_;
-    bodies.position = s.position;
-    bodies.velocity = s.velocity;
-    bodies.angular_velocity = s.angular_velocity;
-    walls = s.walls;
-    fields.set_columns(s.fields);
-    energies = s.energies;
-    time = s.time;
-    last_dt = s.last_dt;
-    step_count = s.step_count;
-    bond_breaks.resize(s.bond_breaks);
-    std::size_t k = 0;
-    for (auto& inst : instances_)
-        for (ContactSet* c : {&inst->balls, &inst->walls}) {
-            const SetState& st = s.sets[k++];
-            c->end1 = st.end1; c->end2 = st.end2; c->history = st.history;  // (prepare()'s rebuild lays the columns out)
-            if (c->with_wall) {  // its side memory (facet_distance) is the rows' before the restore:
-                c->normal.clear();  // the restored rows start without it (carry_history)
-                c->interior.clear();
-            }
-        }
+    Clock clock;
+    std::size_t breaks = 0;
+    last_good_.restore(bodies, walls, fields, energies, clock, breaks, instances_);
+    time = clock.time;
+    last_dt = clock.last_dt;
+    step_count = clock.step_count;
+    bond_breaks.resize(breaks);
     const Diagnostic why = stopped;  // prepare() clears it: a run that goes on is running again
     prepare();
     stopped = why;

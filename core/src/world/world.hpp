@@ -17,6 +17,7 @@
 #include "integration/leapfrog.hpp"
 #include "reduction/chunked_sums.hpp"
 #include "host/plugin_host.hpp"
+#include "monitor/last_good.hpp"
 #include "monitor/stability.hpp"
 #include "common/types.hpp"
 #include "bodies/walls.hpp"
@@ -196,7 +197,7 @@ public:
     std::uint64_t rebuilds() const { return neighbours_.rebuilds; }
     // After a change of the bodies, walls or models: lists, caches and the
     // last good state are renewed (a snapshot never spans a change).
-    void mark_dirty() { neighbours_.invalidate(); prepared_ = false; nominal_valid_ = false; snapshot_.valid = false; }
+    void mark_dirty() { neighbours_.invalidate(); prepared_ = false; nominal_valid_ = false; last_good_.drop(); }
 
 private:
     friend struct WorldCheckpoint;  // checkpoint.cpp saves and restores the private state below
@@ -237,24 +238,7 @@ private:
     void sum_stiffness() const;
     PassContacts pass_contacts_;  // the active contacts the passes see (only when a pass is loaded)
 
-    // the kept copy: the contact rows whose history is not the model's
-    // default, by ends; the others, and all geometry, come back with the
-    // rebuild of restore_snapshot()
-    struct SetState {
-        std::vector<std::int32_t> end1, end2;
-        std::vector<double> history;
-    };
-    struct Snapshot {
-        bool valid = false;
-        std::vector<Vec> position, velocity, angular_velocity;
-        Walls walls;
-        std::vector<std::vector<double>> fields;
-        Energies energies;
-        double time = 0, last_dt = 0;
-        std::uint64_t step_count = 0;
-        std::size_t bond_breaks = 0;
-        std::vector<SetState> sets;  // per instance: balls, walls
-    } snapshot_;
+    LastGoodState last_good_;  // (monitor/last_good.hpp)
     bool at_last_good_ = false;
     StableStep snapshot_stable_;  // stable step at the last good state, for the likely cause
     InstabilityDetector detector_;
