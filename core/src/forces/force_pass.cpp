@@ -224,40 +224,6 @@ void World::scatter_to_chunks(std::uint32_t si) {
     }
 }
 
-// Per-body stiffness sums for the stable timestep (PFC: sqrt(m / sum k_t),
-// sqrt(I / sum k_r) with the arm term k_t |r_c|^2), from the contacts of the
-// last force pass. Only the automatic timestep, snapshots and reports need
-// them, so they are summed on demand, each body in its fixed entry order.
-void World::sum_stiffness() const {
-    if (stiffness_valid_) return;
-    const std::size_t n = bodies.size();
-    k_trans_.assign(n, 0.0);
-    k_rot_.assign(n, 0.0);
-    if (body_contacts_.built_for(n)) {
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
-        for (std::size_t i = 0; i < n; ++i) {
-            double kt = 0, kr = 0;
-            for (const BodyContact& en : body_contacts_.of(i)) {
-                const ContactSet& s = *sets_[en.set];
-                const std::uint32_t k = en.row();
-                if (!s.active[k]) continue;
-                double arm2;
-                if (s.packed) {  // the contact point lies on the normal, its radius + half the gap from each centre
-                    const double arm = end_radius(s, k, en.end2()) + 0.5 * contact_gap(s, k);
-                    arm2 = arm * arm;
-                } else {
-                    arm2 = (Vec(&s.point[3 * k]) - bodies.position[i]).squaredNorm();
-                }
-                kt += s.k_t_at(k);
-                kr += s.k_r_at(k) + s.k_t_at(k) * arm2;
-            }
-            k_trans_[i] = kt;
-            k_rot_[i] = kr;
-        }
-    }
-    stiffness_valid_ = true;
-}
-
 // PFC local damping and mass-proportional viscous damping of body i's force
 // and moment (their work added to local_work).
 void World::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
@@ -351,7 +317,7 @@ bool World::reduce(double closing_kick) {
     double local_work = 0;
     for (double w : block_local_work_) local_work += w;
     energies.local_damping += local_work;
-    stiffness_valid_ = false;
+    stiffness_.invalidate();
 
     for (Wall& w : walls.walls) { w.force.setZero(); w.moment.setZero(); }
     for (auto& inst : instances_) {
@@ -465,14 +431,15 @@ StableStep World::stable_timestep() {
     std::size_t ball = bodies.size();
     bool rotation = false;
     // per-ball stiffness sums exist once forces were computed (prepare())
-    const std::size_t summed = std::min(bodies.size(), k_trans_.size());
+    const std::vector<double>&k_trans = stiffness_.translational(), &k_rot = stiffness_.rotational();
+    const std::size_t summed = std::min(bodies.size(), k_trans.size());
     for (std::size_t i = 0; i < summed; ++i) {
-        if (k_trans_[i] > 0) {
-            const double dt = std::sqrt(bodies.mass[i] / k_trans_[i]);
+        if (k_trans[i] > 0) {
+            const double dt = std::sqrt(bodies.mass[i] / k_trans[i]);
             if (dt < best.critical) { best.critical = dt; ball = i; rotation = false; }
         }
-        if (k_rot_[i] > 0) {
-            const double dt = std::sqrt(bodies.inertia[i] / k_rot_[i]);
+        if (k_rot[i] > 0) {
+            const double dt = std::sqrt(bodies.inertia[i] / k_rot[i]);
             if (dt < best.critical) { best.critical = dt; ball = i; rotation = true; }
         }
     }

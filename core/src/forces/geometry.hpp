@@ -89,6 +89,32 @@ inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std:
     return p;
 }
 
+// A row's gap, normal and contact point at the last force pass, for the
+// readers of the tables (outputs, stress, stiffness sums): a packed table's
+// are recomputed from the positions with the force pass's arithmetic (the
+// same bits, as long as no ball moved since), any other table's are read
+// from its columns.
+inline double row_gap(const Bodies& B, const ContactSet& s, std::size_t k) {
+    if (!s.packed) return s.gap[k];
+    const double dist = (B.position[s.end2[k]] - B.position[s.end1[k]]).norm();
+    return surface_gap(dist, B.radius[s.end1[k]], B.radius[s.end2[k]]);
+}
+inline Vec row_normal(const Bodies& B, const ContactSet& s, std::size_t k) {
+    if (!s.packed) return Vec(&s.normal[3 * k]);
+    const Vec &xi = B.position[s.end1[k]], &xj = B.position[s.end2[k]];
+    return centre_normal(xi, xj, (xj - xi).norm());
+}
+inline Vec row_point(const Bodies& B, const ContactSet& s, std::size_t k) {
+    if (!s.packed) return Vec(&s.point[3 * k]);
+    return ball_contact_point(B.position[s.end1[k]], row_normal(B, s, k), B.radius[s.end1[k]], row_gap(B, s, k));
+}
+// The radius of row k's end 1 or end 2 (a wall's: 0), from the bodies: a
+// packed table keeps no radius columns, and a ball's radius changes only
+// with the scene, which rebuilds the lists.
+inline double row_end_radius(const Bodies& B, const ContactSet& s, std::size_t k, bool end2) {
+    return end2 ? (s.with_wall ? 0.0 : B.radius[s.end2[k]]) : B.radius[s.end1[k]];
+}
+
 bool ball_ball_geometry(const Bodies& bodies, const ModelInstance& inst, ContactSet& s, std::size_t begin,
                         std::size_t end);
 // Rows of a table whose end 2 is a wall facet: ball–plane or ball–facet by

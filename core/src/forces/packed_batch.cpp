@@ -193,23 +193,8 @@ bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::siz
 // range test's distance and gap, centre_normal(), ball_contact_point()),
 // not the whole pair kinematics: a reader needs neither the velocities nor
 // the spin.
-Vec World::contact_normal(const ContactSet& s, std::size_t k) const {
-    if (!s.packed) return Vec(&s.normal[3 * k]);
-    const Vec &xi = bodies.position[s.end1[k]], &xj = bodies.position[s.end2[k]];
-    return centre_normal(xi, xj, (xj - xi).norm());
-}
 
-Vec World::contact_point(const ContactSet& s, std::size_t k) const {
-    if (!s.packed) return Vec(&s.point[3 * k]);
-    return ball_contact_point(bodies.position[s.end1[k]], contact_normal(s, k), bodies.radius[s.end1[k]],
-                              contact_gap(s, k));
-}
 
-double World::contact_gap(const ContactSet& s, std::size_t k) const {
-    if (!s.packed) return s.gap[k];
-    const double dist = (bodies.position[s.end2[k]] - bodies.position[s.end1[k]]).norm();
-    return surface_gap(dist, bodies.radius[s.end1[k]], bodies.radius[s.end2[k]]);
-}
 
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const ReadFields& fields) {
     if (d.count == 0) return 0;

@@ -496,8 +496,8 @@ void WorldCheckpoint::save_detection(const World& w, CheckpointWriter& out) {
     out.vecs(lists.position_at_build);
     out.f64(lists.wall_motion);
     w.sum_stiffness();
-    out.column(w.k_trans_);
-    out.column(w.k_rot_);
+    out.column(w.stiffness_.translational());
+    out.column(w.stiffness_.rotational());
     out.column(w.pass_contacts_.end1_column());
     out.column(w.pass_contacts_.end2_column());
     out.column(w.pass_contacts_.wall_column());
@@ -642,15 +642,15 @@ void WorldCheckpoint::load_detection(World& w, CheckpointReader& in) {
     lists.wall_motion = in.f64();
     const bool reference_missing = !lists.invalidated && lists.position_at_build.size() != w.bodies.size();
     w.neighbours_.restore(std::move(lists));
-    w.k_trans_ = in.column<double>();
-    w.k_rot_ = in.column<double>();
-    w.stiffness_valid_ = true;  // the sums of the pass that made the saved forces
+    std::vector<double> k_trans = in.column<double>();
+    std::vector<double> k_rot = in.column<double>();
+    w.stiffness_.restore(std::move(k_trans), std::move(k_rot));
     w.pass_contacts_.end1_column() = in.column<std::int32_t>();
     w.pass_contacts_.end2_column() = in.column<std::int32_t>();
     w.pass_contacts_.wall_column() = in.column<std::uint8_t>();
     if (reference_missing)
         in.fail("the neighbour-list reference positions do not match the bodies");
-    if (w.prepared_ && (w.k_trans_.size() != w.bodies.size() || w.k_rot_.size() != w.bodies.size()))
+    if (w.prepared_ && (w.stiffness_.translational().size() != w.bodies.size() || w.stiffness_.rotational().size() != w.bodies.size()))
         in.fail("the stiffness sums do not match the bodies");
 }
 

@@ -139,8 +139,7 @@ void World::run_passes(std::uint32_t phase) {
 void World::prepare() {
     bodies.trim();  // the scene is built: no more room for bodies than bodies
     fields.resize(bodies.size());
-    k_trans_.assign(bodies.size(), 0.0);
-    k_rot_.assign(bodies.size(), 0.0);
+    stiffness_.clear(bodies.size());
     neighbours_.invalidate();
     {
         PhaseTimer t{phase_seconds[ph_detection]};

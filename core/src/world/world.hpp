@@ -19,6 +19,8 @@
 #include "host/plugin_host.hpp"
 #include "monitor/last_good.hpp"
 #include "monitor/stability.hpp"
+#include "monitor/stiffness_sums.hpp"
+#include "forces/geometry.hpp"
 #include "common/types.hpp"
 #include "bodies/walls.hpp"
 
@@ -180,15 +182,13 @@ public:
     // last force pass: a packed set's are recomputed from the positions and
     // the gap with the force pass's arithmetic (the same bits, as long as no
     // ball moved since), any other set's are read from its columns.
-    Vec contact_normal(const ContactSet& s, std::size_t k) const;
-    Vec contact_point(const ContactSet& s, std::size_t k) const;
-    double contact_gap(const ContactSet& s, std::size_t k) const;  // (the same: the range test's arithmetic)
+    Vec contact_normal(const ContactSet& s, std::size_t k) const { return row_normal(bodies, s, k); }
+    Vec contact_point(const ContactSet& s, std::size_t k) const { return row_point(bodies, s, k); }
+    double contact_gap(const ContactSet& s, std::size_t k) const { return row_gap(bodies, s, k); }
     // The radius of row k's end 1 or end 2 (a wall's: 0), from the bodies:
     // a packed set keeps no radius columns, and a ball's radius changes
     // only with the scene, which rebuilds the lists (mark_dirty()).
-    double end_radius(const ContactSet& s, std::size_t k, bool end2) const {
-        return end2 ? (s.with_wall ? 0.0 : bodies.radius[s.end2[k]]) : bodies.radius[s.end1[k]];
-    }
+    double end_radius(const ContactSet& s, std::size_t k, bool end2) const { return row_end_radius(bodies, s, k, end2); }
     // A row's key (contacts/contact_keys.hpp): the ids of its two ends.
     ContactKey row_keys(const ContactSet& s, std::size_t k) const { return row_key(bodies, walls, s, k); }
     std::uint64_t state_hash() const;       // FNV-1a over positions, velocities, spins
@@ -233,9 +233,8 @@ private:
     void force_sweep(std::uint32_t set_index, bool with_geometry);
     StillInstances still_;  // instances of fixed balls only (forces/still_instances.hpp)
     // per-body stiffness sums of the last force pass, summed on demand
-    mutable std::vector<double> k_trans_, k_rot_;
-    mutable bool stiffness_valid_ = false;
-    void sum_stiffness() const;
+    mutable StiffnessSums stiffness_;  // (monitor/stiffness_sums.hpp)
+    void sum_stiffness() const { stiffness_.sum(bodies, body_contacts_, sets_, parallel_min); }
     PassContacts pass_contacts_;  // the active contacts the passes see (only when a pass is loaded)
 
     LastGoodState last_good_;  // (monitor/last_good.hpp)
