@@ -5,7 +5,7 @@
 // sedimentation case (thesis §7.1) within its stated tolerance.
 #include "simulation.hpp"
 
-#include "../../plugins/coupling_fluid_particle/drag_law.hpp"
+#include <plab/coupling/drag_law.hpp>
 #include "../support/sph_boundary.hpp"
 #include "../support/case_scene.hpp"
 #include "../support/study_run.hpp"

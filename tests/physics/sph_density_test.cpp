@@ -5,7 +5,7 @@
 // with the normalised form filtering the continuity density.
 #include "simulation.hpp"
 
-#include "../../contact_models/sph/sph_kernels.hpp"
+#include <plab/sph/kernels.hpp>
 #include "../support/static_tank.hpp"
 
 #include <catch2/catch.hpp>

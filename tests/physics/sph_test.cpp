@@ -4,7 +4,7 @@
 // static tank (thesis 5.1) within its stated tolerance.
 #include "simulation.hpp"
 
-#include "../../contact_models/sph/sph_kernels.hpp"
+#include <plab/sph/kernels.hpp>
 #include "../support/static_tank.hpp"
 
 #include <catch2/catch.hpp>

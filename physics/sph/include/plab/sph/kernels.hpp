@@ -10,7 +10,9 @@
 //            for eq. 11, three times too large (tests/physics/sph_test.cpp
 //            integrates W over a lattice and finds 1 with 5/14);
 //   quintic  7/(478 pi h^2), 1/(120 pi h^3).
-// Header-only and free of host types: the plug-in and the tests share it.
+// Header-only and free of host types, part of the SDK (<plab/sph/kernels.hpp>):
+// the sph model and passes, the coupling plug-ins, the tests and out-of-tree
+// plug-ins share it.
 #ifndef PLAB_SPH_KERNELS_HPP
 #define PLAB_SPH_KERNELS_HPP
 

@@ -20,7 +20,7 @@
 // `boundary_group` (groups are numbered in the order the scene first names
 // them, bodies before walls; -1: none). The pass view carries no fixity,
 // hence a group rather than "fixed DOFs".
-#include "../../contact_models/sph/sph_kernels.hpp"
+#include <plab/sph/kernels.hpp>
 
 #include <plab/pass.hpp>
 

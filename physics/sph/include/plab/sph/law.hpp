@@ -6,9 +6,10 @@
 // law() for one Contact calls the same function, so both give the same bits.
 // The kernel and the viscosity model are template parameters (one loop per
 // scene's choice, no test of either per pair).
+// Header-only and free of host types, part of the SDK (<plab/sph/law.hpp>).
 #pragma once
 
-#include "sph_kernels.hpp"
+#include <plab/sph/kernels.hpp>
 
 #include <plab/vec3.hpp>
 

@@ -1,5 +1,7 @@
 // The linear contact law (thesis eqs. 21–29), shared by `linear` and by the
-// linear component of `linear_pbond`: one law, written once.
+// linear components of `linear_pbond` and `linear_lubrication`: one law,
+// written once. Part of the SDK (<plab/dem/linear_law.hpp>), for a model
+// of its own built on the same spring-dashpot.
 #pragma once
 
 #include <plab/contact_model.hpp>

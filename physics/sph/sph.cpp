@@ -15,13 +15,13 @@
 // `sph_density_integration`, `sph_eos` and `sph_wall_pressure` (phase
 // RATES_DONE) turn it into density and pressure before the force stage.
 //
-// The force stage is sph_law.hpp's pair_force(), a function of values that
-// law() calls for one contact and law_rows() in a vectorised loop over a
-// batch (the host's packed batches).
+// The force stage is pair_force() of <plab/sph/law.hpp>, a function of
+// values that law() calls for one contact and law_rows() in a vectorised
+// loop over a batch (the host's packed batches).
 //
 // Conventions: n is the unit normal from end 1 to end 2, x_2 - x_1 = r n,
 // v_rel = v_2 - v_1; dW/dr <= 0 and ∇_2 W_21 = dW/dr n = -∇_1 W_12.
-#include "sph_law.hpp"
+#include <plab/sph/law.hpp>
 
 #include <plab/contact_model.hpp>
 

@@ -3,7 +3,7 @@
 // shear dashpots; Coulomb-limited incremental shear force; no tension in the
 // linear part. Works unchanged for ball–ball and ball–wall contacts (a wall
 // has infinite mass, so the host passes eff_mass = m_ball).
-#include "linear_law.hpp"
+#include <plab/dem/linear_law.hpp>
 
 #include <algorithm>
 #include <cmath>

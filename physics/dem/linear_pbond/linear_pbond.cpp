@@ -5,7 +5,7 @@
 // turn with the contact plane. The bond breaks in tension when σ ≥ σc, else
 // in shear when τ ≥ τc (checked in that order, §3.3.3); a broken bond never
 // carries load again and the contact behaves as `linear`.
-#include "../linear/linear_law.hpp"
+#include <plab/dem/linear_law.hpp>
 
 #include <algorithm>
 #include <cmath>

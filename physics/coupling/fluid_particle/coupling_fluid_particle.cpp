@@ -26,9 +26,9 @@
 // The pair force acts through the centres: the model cancels the moment the
 // host would add at the contact point (an unresolved solid feels no drag
 // torque).
-#include "drag_law.hpp"
+#include <plab/coupling/drag_law.hpp>
 
-#include "../../contact_models/sph/sph_kernels.hpp"
+#include <plab/sph/kernels.hpp>
 
 #include <plab/pass.hpp>
 

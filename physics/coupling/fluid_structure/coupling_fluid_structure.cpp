@@ -24,7 +24,7 @@
 // With p = 0 the structure pushes the fluid with only the fluid's own p/ρ²
 // term, half of what holds it back at rest (docs/sph.md), so the fluid
 // presses into the structure; mode 1 removes that.
-#include "../../contact_models/sph/sph_kernels.hpp"
+#include <plab/sph/kernels.hpp>
 
 #include <plab/pass.hpp>
 

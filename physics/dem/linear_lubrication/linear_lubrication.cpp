@@ -15,7 +15,7 @@
 // The grains of a scene thus still interact with the `linear` law (same
 // header, same properties); this model adds eq. 76 on top, for the one
 // group pair a scene may assign it to.
-#include "../linear/linear_law.hpp"
+#include <plab/dem/linear_law.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,7 @@
 // Fluid–particle drag and buoyancy of one solid particle in the locally
 // averaged fluid (thesis §4.1, eqs. 69–75). Header-only and free of host
-// types: the plug-in and the tests share it.
+// types, part of the SDK (<plab/coupling/drag_law.hpp>): the plug-in and the
+// tests share it.
 //
 // Readings of the thesis text taken here:
 //  * eq. 69 names the drag F_p^b (the buoyancy's symbol); it is the drag
