@@ -89,6 +89,9 @@ void Simulation::load_plugins(const Node& n) {
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node p = n.at(i);
         const std::string name = p.string();
+        if (const std::string now = PluginHost::merged_into(name); !now.empty())
+            spdlog::warn("{}: \"{}\" is part of the library \"{}\" now (physics packages, docs/architecture.md), "
+                         "which it loads; list \"{}\" instead", p.path(), name, now, now);
         std::string file;
         try {
             file = host_->resolve(name, scene_dir_);

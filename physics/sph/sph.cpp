@@ -259,4 +259,10 @@ private:
 
 } // namespace
 
-PLAB_PLUGIN(plab::add_contact_model<Sph>(r))
+// plab_sph, the SPH package's library: the model and the passes
+// (sph_passes.cpp) in one plab_plugin_init.
+namespace plab::sph {
+int register_passes(const plab_registrar* r);
+}
+
+PLAB_PLUGIN(plab::add_contact_model<Sph>(r) != 0 ? 1 : plab::sph::register_passes(r))

@@ -1,7 +1,8 @@
-// Passes of weakly compressible SPH (companions of the `sph` contact model),
-// all in phase RATES_DONE: after the host's rates stage, where the model
-// accumulated the continuity sum (thesis eq. 7) at the new positions and
-// half-step velocities, and before the force stage. In stage order:
+// Passes of weakly compressible SPH (companions of the `sph` contact model,
+// in one library with it, plab_sph), all in phase RATES_DONE: after the
+// host's rates stage, where the model accumulated the continuity sum
+// (thesis eq. 7) at the new positions and half-step velocities, and before
+// the force stage. In stage order:
 //   sph_density_integration  ρ += dt dρ/dt — the density is then in step with
 //                            the positions (integrating after the forces
 //                            instead lags the pressure a step: unstable).
@@ -636,8 +637,15 @@ private:
 
 } // namespace
 
-PLAB_PLUGIN(plab::add_pass<SphEos>(r) != 0     ? 1
-            : plab::add_pass<SphWallPressure>(r) != 0 ? 1
-            : plab::add_pass<SphDensityIntegration>(r) != 0 ? 1
-            : plab::add_pass<SphDensitySummation>(r) != 0 ? 1
-                                                 : plab::add_pass<SphXsph>(r))
+namespace plab::sph {
+
+// The passes of plab_sph, registered by its plab_plugin_init (sph.cpp).
+int register_passes(const plab_registrar* r) {
+    return plab::add_pass<SphEos>(r) != 0                  ? 1
+           : plab::add_pass<SphWallPressure>(r) != 0       ? 1
+           : plab::add_pass<SphDensityIntegration>(r) != 0 ? 1
+           : plab::add_pass<SphDensitySummation>(r) != 0   ? 1
+                                                           : plab::add_pass<SphXsph>(r);
+}
+
+} // namespace plab::sph

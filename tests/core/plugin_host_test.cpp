@@ -44,6 +44,20 @@ TEST_CASE("the host finds the linear model and the coordination pass in its buil
     CHECK(host.model("linear")->property_count == 7);
 }
 
+// The SPH passes joined the sph model in one library, plab_sph: a scene
+// or checkpoint that names the former library sph_passes loads it.
+TEST_CASE("the former library name sph_passes resolves to plab_sph, the SPH package's one library", "[host]") {
+    PluginHost host;
+    CHECK(PluginHost::merged_into("sph_passes") == "sph");
+    CHECK(PluginHost::merged_into("linear").empty());
+    CHECK(host.resolve("sph_passes") == host.resolve("sph"));
+    const LoadedLibrary& lib = host.load(host.resolve("sph_passes"));
+    CHECK(lib.models == std::vector<std::string>{"sph"});
+    CHECK(host.pass("sph_eos") != nullptr);
+    CHECK(host.pass("sph_xsph") != nullptr);
+    CHECK(host.library_of_pass("sph_eos") == host.library_of_model("sph"));
+}
+
 TEST_CASE("a library built for another ABI version is refused, naming the file and both versions", "[host]") {
     PluginHost host;
     const std::string msg = refusal(host, "wrong_abi");

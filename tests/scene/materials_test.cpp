@@ -19,7 +19,7 @@ json two_ball_scene() {
     return json::parse(R"({
       "dimension": 2,
       "gravity": [0, -9.81],
-      "plugins": ["sph", "sph_passes"],
+      "plugins": ["sph"],
       "bodies": [
         {"type": "ball", "group": "fluid", "position": [0, 0.01], "radius": 0.005, "mass": 0.1, "fix": ["all"]},
         {"type": "ball", "group": "boundary", "position": [0, 0], "radius": 0.0025, "mass": 0.025, "fix": ["all"]}

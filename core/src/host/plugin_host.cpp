@@ -35,6 +35,13 @@ int cb_register_pass_state(void* host, const plab_pass_state_hooks* h) {
     return static_cast<PluginHost*>(host)->register_pass_state(h);
 }
 
+// Libraries merged into another: the former name loads the new library
+// (the SPH passes joined the sph model in the SPH package's one library).
+const std::map<std::string, std::string>& merged_libraries() {
+    static const std::map<std::string, std::string> merged = {{"sph_passes", "sph"}};
+    return merged;
+}
+
 std::string fmt(double v) {
     std::ostringstream s;
     s << v;
@@ -296,6 +303,7 @@ bool file_exists(const fs::path& p) {
 std::string PluginHost::resolve(const std::string& ref, const std::string& relative_to) const {
     const bool is_path = ref.find('/') != std::string::npos || fs::path(ref).extension() == ".so";
     std::vector<std::string> tried;
+    if (const std::string now = merged_into(ref); !is_path && !now.empty()) return resolve(now, relative_to);
     if (is_path) {
         fs::path p(ref);
         if (p.is_relative() && !relative_to.empty()) p = fs::path(relative_to) / p;
@@ -312,6 +320,11 @@ std::string PluginHost::resolve(const std::string& ref, const std::string& relat
         }
     throw PluginError("plug-in '" + ref + "' not found in the search path (" + join(dirs) +
                       "); set PLAB_PLUGIN_PATH or give a path to the .so");
+}
+
+std::string PluginHost::merged_into(const std::string& name) {
+    const auto it = merged_libraries().find(name);
+    return it == merged_libraries().end() ? std::string() : it->second;
 }
 
 std::vector<std::string> PluginHost::discover() const {

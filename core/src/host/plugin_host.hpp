@@ -36,8 +36,12 @@ public:
     const std::vector<std::string>& search_dirs() const { return dirs_; }
 
     // Resolve a plug-in reference (a name like "linear", or a path to a .so)
-    // to a file; throws PluginError naming what was tried.
+    // to a file; throws PluginError naming what was tried. The name of a
+    // library merged into another resolves to that one (merged_into).
     std::string resolve(const std::string& name_or_path, const std::string& relative_to = "") const;
+    // The library a former library name is now part of ("sph_passes" ->
+    // "sph"), or "" for any other name.
+    static std::string merged_into(const std::string& name);
     // Load a library once (idempotent by canonical path); throws PluginError.
     const LoadedLibrary& load(const std::string& path);
     // Every library file in the search path.
