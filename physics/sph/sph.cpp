@@ -22,6 +22,7 @@
 // Conventions: n is the unit normal from end 1 to end 2, x_2 - x_1 = r n,
 // v_rel = v_2 - v_1; dW/dr <= 0 and ∇_2 W_21 = dW/dr n = -∇_1 W_12.
 #include <plab/sph/law.hpp>
+#include <plab/sph/material.hpp>
 
 #include <plab/contact_model.hpp>
 
@@ -114,20 +115,16 @@ struct Sph {
     // reads the two masses (not the effective mass or radius, the radii or
     // the spin) and writes a step limit (abi.h, ABI 5)
     static constexpr uint32_t io = PLAB_IO_MASSES | PLAB_IO_DT_LIMIT;
+    // h, the kernel, rho0 and c0 are the fluid's: a scene material of its groups gives them
+    using material = plab::sph::FluidMaterial;
 
     enum Prop : int {
         smoothing_length, kernel, rest_density, speed_of_sound, viscosity, mu, alpha, beta,
         anticlump, anticlump_spacing, density_diffusion, prop_count
     };
     static constexpr plab_property_desc properties[] = {
-        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "kernel support is 2h (Wendland C2, cubic spline) or 3h (quintic)"),
-        plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1,
-         "wendland_c2: Wendland C2 (eq. 12, the thesis' choice); cubic: cubic spline (eq. 11); quintic: quintic spline"),
-        plab::prop::number("rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "used for the viscous step limit and for a body whose density field is not set"),
-        plab::prop::number("speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0, inf,
-         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "CFL limit and Monaghan viscosity; about 10 x the largest flow speed"),
+        plab::sph::fluid::smoothing_length, plab::sph::fluid::kernel, plab::sph::fluid::rest_density,
+        plab::sph::fluid::speed_of_sound,
         plab::prop::choice("viscosity", "viscosity model", viscosity_names, 1,
          "laminar: Morris, with dynamic viscosity mu (eq. 14); artificial: Monaghan, with alpha, beta (Islam eq. 8)"),
         plab::prop::number("mu", "dynamic viscosity", "Pa s", 8.9e-4, 0.0, inf, PLAB_MAX_EXCLUSIVE, "laminar model (viscosity laminar)"),

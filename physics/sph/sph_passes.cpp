@@ -22,6 +22,7 @@
 // them, bodies before walls; -1: none). The pass view carries no fixity,
 // hence a group rather than "fixed DOFs".
 #include <plab/sph/kernels.hpp>
+#include <plab/sph/material.hpp>
 
 #include <plab/pass.hpp>
 
@@ -39,15 +40,12 @@ namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-// The equation of state's constants, declared by every pass that uses them;
-// a scene gives them the same values as the sph contact model.
-constexpr plab_property_desc rest_density_desc = plab::prop::number("rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf,
-                                                  PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in the sph contact model");
-constexpr plab_property_desc speed_of_sound_desc = plab::prop::number("speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0,
-                                                    inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-                                                    "as in the sph contact model; B = rho0 c0^2/gamma");
-constexpr plab_property_desc gamma_desc = plab::prop::number("gamma", "polytropic exponent", "1", 7.0, 0.0, inf,
-                                           PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "Tait exponent, 7 for water");
+// The fluid's constants (rho0, c0, gamma, h, the kernel) are the SPH
+// package's material, sph_fluid (<plab/sph/material.hpp>): every pass that
+// uses some takes them from it, as the sph model does, so a scene material
+// states them once.
+using plab::sph::FluidMaterial;
+namespace fluid = plab::sph::fluid;
 
 constexpr plab_property_desc boundary_group_desc = plab::prop::optional_group(
     "boundary_group", "group of fixed boundary balls", "their density stays rho0 (thesis 2.2.4); none: no boundary balls");
@@ -60,12 +58,13 @@ struct SphEos {
         "hydrostatic_gravity > 0.";
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 10;  // after sph_density_integration
+    using material = FluidMaterial;
     enum Prop : int {
         rest_density, speed_of_sound, gamma, boundary_group, hydrostatic_gravity, surface_level, density_band,
         initial_density, expected_max_speed, prop_count
     };
     static constexpr plab_property_desc properties[] = {
-        rest_density_desc, speed_of_sound_desc, gamma_desc,
+        fluid::rest_density, fluid::speed_of_sound, fluid::gamma,
         boundary_group_desc,
         plab::prop::number("hydrostatic_gravity", "gravity for the initial hydrostatic density", "m/s2", 0.0, 0.0, inf,
          PLAB_MAX_EXCLUSIVE, "g of the initial profile; 0: uniform rho0"),
@@ -77,9 +76,7 @@ struct SphEos {
         plab::prop::boolean("initial_density", "set the initial density", true,
          "true: at the first run rho0 / the hydrostatic profile (a state for the continuity equation or the normalised "
          "summation); false: keep what the density pass computed (plain summation density, a function of positions)"),
-        plab::prop::number("expected_max_speed", "largest flow speed the scene expects", "m/s", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE,
-         "from the material (2 sqrt(g H) for a dam break of height H); only for the advice when the density band "
-         "is left; 0: not stated"),
+        fluid::expected_max_speed,
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
     enum Field : int { density, pressure };
@@ -222,15 +219,13 @@ struct SphWallPressure {
         "density by the inverse EOS. Runs after sph_eos.";
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 20;  // after sph_eos
+    using material = FluidMaterial;
     enum Prop : int {
         smoothing_length, kernel, rest_density, speed_of_sound, gamma, boundary_group, gx, gy, gz, no_slip,
         wall_acceleration, prop_count
     };
     static constexpr plab_property_desc properties[] = {
-        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"),
-        plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1, "as in the sph contact model"),
-        rest_density_desc, speed_of_sound_desc, gamma_desc,
+        fluid::smoothing_length, fluid::kernel, fluid::rest_density, fluid::speed_of_sound, fluid::gamma,
         boundary_group_desc,
         plab::prop::number("gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),
         plab::prop::number("gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),
@@ -369,11 +364,10 @@ struct SphDensitySummation {
         "EOS. Boundary balls contribute and keep their density.";
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 5;  // after sph_density_integration (0), before sph_eos (10)
+    using material = FluidMaterial;
     enum Prop : int { smoothing_length, kernel, boundary_group, normalised, prop_count };
     static constexpr plab_property_desc properties[] = {
-        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"),
-        plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1, "as in the sph contact model"),
+        fluid::smoothing_length, fluid::kernel,
         boundary_group_desc,
         plab::prop::boolean("normalised", "normalised summation", false,
          "false: rho_i = sum m_j W_ij (eq. 8); true: divided by sum (m_j/rho_j) W_ij (eq. 9, Shepard filter of the "
@@ -584,11 +578,10 @@ struct SphXsph {
         "fluid-fluid pairs, half-step velocities; the velocity itself is unchanged.";
     static constexpr uint32_t phase = PLAB_PHASE_PRE_DRIFT;
     static constexpr uint32_t stage = 0;
+    using material = FluidMaterial;
     enum Prop : int { smoothing_length, kernel, boundary_group, epsilon, prop_count };
     static constexpr plab_property_desc properties[] = {
-        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"),
-        plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1, "as in the sph contact model"),
+        fluid::smoothing_length, fluid::kernel,
         boundary_group_desc,
         plab::prop::number("epsilon", "XSPH coefficient", "1", 0.5, 0.0, 1.0, 0,
          "eps of eq. 18; 0.5 is usual, large values slow the flow unphysically (thesis 2.2.3)"),

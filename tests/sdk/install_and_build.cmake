@@ -36,7 +36,7 @@ endif()
 set(headers_src ${WORK_DIR}/headers_src)
 file(MAKE_DIRECTORY ${headers_src})
 file(GLOB package_headers RELATIVE ${prefix}/include ${prefix}/include/plab/*/*.hpp)
-foreach(required plab/sph/kernels.hpp plab/sph/law.hpp plab/dem/linear_law.hpp
+foreach(required plab/sph/kernels.hpp plab/sph/law.hpp plab/sph/material.hpp plab/dem/linear_law.hpp
                  plab/coupling/drag_law.hpp)
   if(NOT required IN_LIST package_headers)
     message(FATAL_ERROR "the SDK installed into ${prefix} has no include/${required}; it has: ${package_headers}")

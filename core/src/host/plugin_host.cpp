@@ -395,6 +395,7 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
     entry.path = path;
     loading_ = path;
     problems_.clear();
+    loading_materials_.clear();
     const auto before_models = models_;
     const auto before_passes = passes_;
     const auto before_materials = materials_;
@@ -418,8 +419,7 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
         if (lib_path == path) entry.models.push_back(name);
     for (const auto& [name, lib_path] : pass_lib_)
         if (lib_path == path) entry.passes.push_back(name);
-    for (const auto& [name, lib_path] : material_lib_)
-        if (lib_path == path) entry.materials.push_back(name);
+    entry.materials = loading_materials_;  // (also those an earlier library registered alike)
     entry.lib = std::move(lib);
     libs_.push_back(std::move(entry));
     return libs_.back();
@@ -552,7 +552,11 @@ int PluginHost::register_material(const plab_material_desc* d) {
             if (std::strcmp(a.key, b.key) != 0) differs = "property #" + std::to_string(i) + " " + a.key + " against " + b.key;
             else if (const std::string why = declaration_difference(a, b); !why.empty()) differs = std::string(a.key) + ": " + why;
         }
-        if (differs.empty()) return 0;  // registered before, alike
+        if (differs.empty()) {  // registered before, alike
+            if (std::find(loading_materials_.begin(), loading_materials_.end(), name) == loading_materials_.end())
+                loading_materials_.push_back(name);
+            return 0;
+        }
         problems_.push_back("material '" + name + "' is already registered by " + material_lib_[name] +
                             " with other properties (" + differs + "); one material, one description");
         return 1;
@@ -561,6 +565,7 @@ int PluginHost::register_material(const plab_material_desc* d) {
     m.desc.properties = data_or_null(m.properties);
     materials_[name] = &m.desc;
     material_lib_[name] = loading_;
+    loading_materials_.push_back(name);
     return 0;
 }
 

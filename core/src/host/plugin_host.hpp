@@ -19,7 +19,8 @@ namespace plab {
 struct LoadedLibrary {
     std::string path;
     std::unique_ptr<boost::dll::shared_library> lib;
-    std::vector<std::string> models, passes, materials;
+    std::vector<std::string> models, passes;
+    std::vector<std::string> materials;  // it registers (first, or alike after another library)
 };
 
 class PluginHost {
@@ -54,6 +55,7 @@ public:
     const std::string& library_of_model(const std::string& name) const { return model_lib_.at(name); }
     const std::string& library_of_pass(const std::string& name) const { return pass_lib_.at(name); }
     // A material (abi.h plab_material_desc) by name; nullptr: not registered.
+    // Its library: the first that registered it.
     const plab_material_desc* material(const std::string& name) const;
     const std::string& library_of_material(const std::string& name) const { return material_lib_.at(name); }
     // Checkpoint hooks of a pass with private state; nullptr: stateless.
@@ -76,6 +78,7 @@ private:
     std::map<std::string, const plab_material_desc*> materials_;
     std::map<std::string, std::string> material_lib_;
     std::string loading_;               // library being initialised
+    std::vector<std::string> loading_materials_;  // the materials it registers
     // the host's copies of the descriptions registered (abi.h: each struct
     // read by its own size), to which models_ and passes_ point
     struct ModelCopy {

@@ -29,6 +29,7 @@
 #include <plab/coupling/drag_law.hpp>
 
 #include <plab/sph/kernels.hpp>
+#include <plab/sph/material.hpp>
 
 #include <plab/pass.hpp>
 
@@ -46,11 +47,10 @@ using plab::sph::KernelKind;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-constexpr plab_property_desc smoothing_length_desc = plab::prop::number(
-    "smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-    "as in the sph contact model: the voidage and Shepard sums use the fluid's kernel");
-constexpr plab_property_desc kernel_desc = plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1,
-                                            "as in the sph contact model: wendland_c2, cubic (spline) or quintic");
+// The voidage and Shepard sums use the fluid's kernel, and the drag its
+// density: the SPH package's material (sph_fluid), which a scene material of
+// the fluid gives as it gives the sph model.
+using plab::sph::FluidMaterial;
 // drag_2d and buoyancy by index (Drag2d; 0 pressure gradient, 1 eq. 75)
 constexpr const char* drag_2d_names[] = {"cylinder", "thesis"};
 constexpr const char* buoyancy_names[] = {"pressure_gradient", "hydrostatic"};
@@ -73,6 +73,7 @@ struct FluidParticleDrag {
         "fluid (eq. 81). Runs after sph_eos and sph_wall_pressure.";
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 30;  // after sph_density_integration (0), sph_eos (10), sph_wall_pressure (20)
+    using material = FluidMaterial;
 
     enum Prop : int {
         fluid_group, solid_group, smoothing_length, kernel, rest_density, mu, drag_2d, buoyancy, min_voidage, gx, gy, gz,
@@ -81,10 +82,9 @@ struct FluidParticleDrag {
     static constexpr plab_property_desc properties[] = {
         plab::prop::group("fluid_group", "group of the SPH fluid", "the fluid balls the solids are coupled to"),
         plab::prop::group("solid_group", "group of the solid particles", "the DEM balls the fluid drags"),
-        smoothing_length_desc,
-        kernel_desc,
-        plab::prop::number("rest_density", "fluid reference density rho_f", "kg/m3", 1000.0, 0.0, inf,
-         PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "in the drag law (eq. 70) and the eq. 75 buoyancy"),
+        plab::sph::fluid::smoothing_length,
+        plab::sph::fluid::kernel,
+        plab::sph::fluid::rest_density,  // rho_f of the drag law (eq. 70) and the eq. 75 buoyancy
         plab::prop::number("mu", "fluid dynamic viscosity mu_f", "Pa s", 1e-3, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
          "in the Ergun branch and the Reynolds number (eqs. 70, 73)"),
         plab::prop::choice("drag_2d", "2D reading of the drag law", drag_2d_names, 0,
@@ -225,9 +225,10 @@ struct FluidParticle {
         "per pair: explicit drag is stable while dt < m/K; half of min(m_solid/K, m_fluid/(K share)) with K the "
         "solid's drag coefficient from the pass; 1e30 s before any drag exists";
     static constexpr uint32_t range_kind = PLAB_RANGE_DISTANCE;
+    using material = FluidMaterial;
 
     enum Prop : int { smoothing_length, kernel, prop_count };
-    static constexpr plab_property_desc properties[] = {smoothing_length_desc, kernel_desc};
+    static constexpr plab_property_desc properties[] = {plab::sph::fluid::smoothing_length, plab::sph::fluid::kernel};
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 
     enum Field : int { solid_volume, shepard, force_x, force_y, force_z, drag_coeff, density };

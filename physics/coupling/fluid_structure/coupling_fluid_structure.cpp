@@ -25,6 +25,7 @@
 // term, half of what holds it back at rest (docs/sph.md), so the fluid
 // presses into the structure; mode 1 removes that.
 #include <plab/sph/kernels.hpp>
+#include <plab/sph/material.hpp>
 
 #include <plab/pass.hpp>
 
@@ -47,6 +48,8 @@ struct StructureSphState {
         "Islam eqs. 10-11 with the ball's acceleration). Runs after sph_eos; assign `sph` to fluid x structure.";
     static constexpr uint32_t phase = PLAB_PHASE_RATES_DONE;
     static constexpr uint32_t stage = 25;  // after sph_eos (10) and sph_wall_pressure (20)
+    // h, the kernel, rho0, c0 and gamma are the fluid's (the SPH package's material)
+    using material = plab::sph::FluidMaterial;
     enum Prop : int {
         structure_group, fluid_group, pressure_mode, smoothing_length, kernel, rest_density, speed_of_sound, gamma, gx, gy, gz,
         prop_count
@@ -57,14 +60,8 @@ struct StructureSphState {
         plab::prop::choice("pressure_mode", "structure pressure", pressure_mode_names, 1,
          "rest: rho0, p = 0 (thesis); extrapolated: from the fluid with the ball's acceleration; extrapolated_gravity: "
          "from the fluid with gravity only (for lattices whose balls vibrate: free-standing or breaking structures)"),
-        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"),
-        plab::prop::choice("kernel", "kernel function", plab::sph::kernel_names, 1, "as in the sph contact model"),
-        plab::prop::number("rest_density", "reference density rho0", "kg/m3", 1000.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph contact model"),
-        plab::prop::number("speed_of_sound", "numerical speed of sound c0", "m/s", 20.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in sph_eos; B = rho0 c0^2/gamma"),
-        plab::prop::number("gamma", "polytropic exponent", "1", 7.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "as in sph_eos"),
+        plab::sph::fluid::smoothing_length, plab::sph::fluid::kernel, plab::sph::fluid::rest_density,
+        plab::sph::fluid::speed_of_sound, plab::sph::fluid::gamma,
         plab::prop::number("gravity_x", "gravity, x", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),
         plab::prop::number("gravity_y", "gravity, y", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),
         plab::prop::number("gravity_z", "gravity, z", "m/s2", 0.0, -inf, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE, "the scene's gravity"),

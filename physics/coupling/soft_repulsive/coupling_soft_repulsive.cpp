@@ -15,6 +15,7 @@
 // eq. 21 is an acceleration. To keep the pair force equal and opposite it
 // is applied with the pair's mass 2 m1 m2 / (m1 + m2) (= m for equal masses).
 #include <plab/contact_model.hpp>
+#include <plab/sph/material.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -33,13 +34,14 @@ struct SoftRepulsive {
         "along the line of centres, active for r < min(dp, 1.5 h). Assign to fluid x structure instead of sph.";
     static constexpr const char* timestep_rule = "per pair: 0.25 h/(c + |v_rel|), the SPH CFL limit";
     static constexpr uint32_t range_kind = PLAB_RANGE_DISTANCE;
+    // c and h are the fluid's (the SPH package's material): the strength
+    // scales with c^2, eta = r/(0.75 h) (eq. 22)
+    using material = plab::sph::FluidMaterial;
 
     enum Prop : int { speed_of_sound, smoothing_length, spacing, prop_count };
     static constexpr plab_property_desc properties[] = {
-        plab::prop::number("speed_of_sound", "numerical speed of sound c", "m/s", 20.0, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "as in the sph model; the strength scales with c^2"),
-        plab::prop::number("smoothing_length", "smoothing length h", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
-         "eta = r/(0.75 h), eq. 22"),
+        plab::sph::fluid::speed_of_sound,
+        plab::sph::fluid::smoothing_length,
         plab::prop::number("spacing", "particle spacing dp", "m", 0.005, 0.0, inf, PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
          "zeta = 1 - r/dp, eq. 23: the contact acts inside one spacing"),
     };

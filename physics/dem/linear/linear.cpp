@@ -32,6 +32,8 @@ struct Linear {
     // reads the effective mass (dashpots) besides normal, gap and relative
     // velocity; writes no pure moment, rotational stiffness or step limit
     static constexpr uint32_t io = PLAB_IO_EFF_MASS;
+    // a scene material of its groups gives the linear law's properties (kn, ..., rgap)
+    using material = plab::linear_law::Material;
 
     enum Prop : int { kn, ks, fric, dp_nratio, dp_sratio, dp_mode, rgap, prop_count };
     static constexpr plab_property_desc properties[] = {

@@ -37,6 +37,8 @@ struct LinearLubrication {
     static constexpr const char* timestep_rule =
         "as linear (sqrt(m / sum k)); the lubrication damper c = 3 pi mu d^2/(8 s) adds dt < m_eff / c";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    // a scene material of its groups gives the linear law's properties (kn, ..., rgap)
+    using material = plab::linear_law::Material;
 
     enum Prop : int { kn, ks, fric, dp_nratio, dp_sratio, dp_mode, rgap, mu, lub_range, lub_min_gap, prop_count };
     static constexpr plab_property_desc properties[] = {

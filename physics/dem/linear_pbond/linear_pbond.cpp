@@ -27,6 +27,8 @@ struct LinearPBond {
     static constexpr const char* timestep_rule =
         "per ball sqrt(m / sum k) with k = max(kn + A pb_kn, ks + A pb_ks), and sqrt(I / sum (k r^2 + pb_kn I_bond))";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    // a scene material of its groups gives the linear law's properties (kn, ..., rgap)
+    using material = plab::linear_law::Material;
 
     enum Prop : int { kn, ks, fric, dp_nratio, dp_sratio, dp_mode, rgap, pb_kn, pb_ks, pb_rmul, pb_mcf, pb_ten, pb_coh, prop_count };
     static constexpr plab_property_desc properties[] = {

@@ -38,6 +38,21 @@ inline constexpr plab_property_desc rgap = plab::prop::number("rgap", "reference
                                             PLAB_MIN_EXCLUSIVE | PLAB_MAX_EXCLUSIVE,
                                             "the linear part is active while surface gap <= rgap");
 
+// The DEM package's material, "dem_linear" (abi.h plab_material_desc): the
+// linear law's properties, which a scene may state per group of balls,
+//   "materials": {"sand": {"groups": ["sand"], "kn": 1e6, "fric": 0.5}, "glass": {...}},
+// and which a contact between groups of two materials mixes by each
+// property's rule (kn, ks harmonic; fric the smaller; the damping ratios
+// arithmetic; dp_mode and rgap must agree). A model built on the law takes
+// them with `using material = plab::linear_law::Material;`.
+struct Material {
+    static constexpr const char* name = "dem_linear";
+    static constexpr const char* doc =
+        "the linear spring-dashpot contact of a group of balls: stiffnesses, friction, damping ratios, dashpot mode, "
+        "reference gap (thesis eqs. 21-29)";
+    static constexpr plab_property_desc properties[] = {kn, ks, fric, dp_nratio, dp_sratio, dp_mode, rgap};
+};
+
 // History slots of the linear law's shear spring (three, in this order).
 inline constexpr plab_history_desc shear_force_x = plab::history_desc("shear_force_x", 0.0, PLAB_SWAP_NEGATE,
                                                     "linear shear force on end 2, global x, N");
