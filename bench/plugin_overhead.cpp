@@ -2,7 +2,7 @@
 // target <= 3 %). The `linear` law runs on the same contact batches twice:
 //   plugin  — the library the host loads (plab_linear.so), called through
 //             the C ABI (one indirect call per batch of kContactBatch rows);
-//   inline  — the same source (contact_models/linear/linear.cpp) compiled
+//   inline  — the same source (physics/dem/linear/linear.cpp) compiled
 //             into this binary and called directly, so the compiler may
 //             inline the batch loop into the benchmark.
 // The batches look like a settling pile's: about 45 % of the candidate rows
@@ -19,7 +19,7 @@
 // exported entry points are renamed so they cannot clash with the library's.
 #define plab_plugin_abi_version inline_linear_abi_version
 #define plab_plugin_init inline_linear_init
-#include "../contact_models/linear/linear.cpp"
+#include "../physics/dem/linear/linear.cpp"
 #undef plab_plugin_abi_version
 #undef plab_plugin_init
 

@@ -1,5 +1,6 @@
-// Scene materials: constants stated once, copied into the same-named
-// properties of the models and passes that use them (materials.hpp).
+// Scene materials: constants stated once, given to the properties that the
+// models and passes using them take from their package's material
+// (materials.hpp).
 #include "materials.hpp"
 
 #include "generators.hpp"
@@ -201,19 +202,28 @@ const char* mix_formula(uint32_t rule) {
 } // namespace
 
 void Materials::fill(const Node& owner, const std::vector<std::vector<int>>& sides, const plab_property_desc* props,
-                     uint32_t count, const Vec& gravity, const std::vector<std::string>& groups,
-                     std::vector<double>& values) {
+                     uint32_t count, const plab_material_desc* material, const Vec& gravity,
+                     const std::vector<std::string>& groups, std::vector<double>& values) {
     const json* given = owner.has("properties") ? &owner.value()["properties"] : nullptr;
     for (uint32_t p = 0; p < count; ++p) {
         const std::string key = props[p].key;
         const bool explicit_value = given && given->contains(key);
+        // a property the package material declares (the host has checked
+        // that the two declare it alike) takes the scene materials' values;
+        // any other takes none
+        const bool shared = material_property(material, props[p].key) != nullptr;
+        for (std::size_t s = 0; shared && s < sides.size() && s < 2; ++s)
+            for (int mi : sides[s]) {
+                std::vector<std::string>& takeable = materials_[mi].takeable;
+                if (std::find(takeable.begin(), takeable.end(), key) == takeable.end()) takeable.push_back(key);
+            }
         // per side of the rule: the value its materials give, and where
         struct Stated {
             bool set = false;
             double x = 0;
             std::string path;
         } side[2];
-        for (std::size_t s = 0; s < sides.size() && s < 2; ++s)
+        for (std::size_t s = 0; shared && s < sides.size() && s < 2; ++s)
             for (int mi : sides[s]) {
                 Material& m = materials_[mi];
                 if (!m.values.contains(key)) continue;
@@ -276,9 +286,15 @@ void Materials::check_all_used() const {
     for (const Material& m : materials_)
         for (auto v = m.values.begin(); v != m.values.end(); ++v) {
             if (v.key() == "groups" || std::find(m.used.begin(), m.used.end(), v.key()) != m.used.end()) continue;
+            std::string takeable;
+            for (const std::string& k : m.takeable) takeable += (takeable.empty() ? "" : ", ") + k;
             throw InputError(m.path + "." + v.key(),
-                             "no contact model or pass using the material \"" + m.name + "\" has a property '" +
-                                 v.key() + "' (plab plugins --describe NAME lists them)");
+                             "no contact model or pass using the material \"" + m.name + "\" takes a property '" +
+                                 v.key() + "' from it; they take " +
+                                 (takeable.empty() ? std::string("none (none of them names a package material)")
+                                                   : takeable) +
+                                 ": the properties their package's material declares (plab plugins --describe NAME "
+                                 "shows a model's or pass's material)");
         }
 }
 

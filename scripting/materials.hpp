@@ -1,11 +1,19 @@
-// Scene materials (`scene.materials`): constants stated once and copied by
-// the loader into the same-named properties of the contact models and passes
-// that use them. A weakly compressible SPH fluid otherwise repeats rho0, c0,
-// gamma, h and the kernel in the `sph` model and in every pass
-// (docs/scene-format.md, docs/sph.md).
+// Scene materials (`scene.materials`): constants stated once per group and
+// given by the loader to the contact models and passes that use them. A
+// weakly compressible SPH fluid otherwise repeats rho0, c0, gamma, h and the
+// kernel in the `sph` model and in every pass (docs/scene-format.md,
+// docs/sph.md).
 //
 //   "materials": {"water": {"groups": ["fluid", "boundary"],
 //                           "rest_density": 1000, "speed_of_sound": 19.8, ...}}
+//
+// What a scene material can give is declared by the plug-ins: a package
+// registers a material (abi.h plab_material_desc, e.g. the SPH package's
+// "sph_fluid": rest_density, speed_of_sound, gamma, smoothing_length, kernel,
+// expected_max_speed), and a model or pass that names it in its description
+// takes from a scene material the values of those of its properties that the
+// package material declares, and no others. A model or pass that names no
+// material takes nothing from the scene's materials.
 //
 // A contact rule takes the materials of the groups it names; a pass names
 // its material (`"material": "water"`). When the two sides of a rule have
@@ -14,7 +22,7 @@
 // value; a property without one (mixing none) is then an error naming both
 // paths. A value given explicitly that
 // differs from the material's is an error naming both JSON paths; a material
-// key that no model or pass using the material declares is an error (a typo
+// key that no model or pass using the material takes is an error (a typo
 // would otherwise be silently ignored). Properties named gravity_x/y/z are
 // filled from the scene's `gravity` the same way. This is a loader feature:
 // plug-ins see ordinary property values.
@@ -49,13 +57,16 @@ public:
     int find(const Node& n) const;
 
     // Fills `values` (in the declaration order of `props`) for the keys that
-    // `owner.properties` does not give: from the materials of each side of
-    // a contact rule (`sides`: one or two lists of material indices; a pass
-    // has one), mixed by the property's rule where the two sides differ,
-    // then from the scene gravity for gravity_x/y/z. Explicit values must
-    // agree. `groups`: the scene's group names, for group properties.
+    // `owner.properties` does not give: the properties that the model's or
+    // pass's package material (`material`, nullptr: none) declares from the
+    // materials of each side of a contact rule (`sides`: one or two lists of
+    // material indices; a pass has one), mixed by the property's rule where
+    // the two sides differ; then gravity_x/y/z from the scene gravity.
+    // Explicit values must agree. `groups`: the scene's group names, for
+    // group properties.
     void fill(const Node& owner, const std::vector<std::vector<int>>& sides, const plab_property_desc* props,
-              uint32_t count, const Vec& gravity, const std::vector<std::string>& groups, std::vector<double>& values);
+              uint32_t count, const plab_material_desc* material, const Vec& gravity,
+              const std::vector<std::string>& groups, std::vector<double>& values);
     // A key of a material that no user declared: an error naming its path.
     void check_all_used() const;
     // Per material with a speed of sound: its value, the rule that set it
@@ -68,6 +79,9 @@ private:
         json values;  // the material object, speed_of_sound and expected_max_speed as numbers
         std::vector<int> groups;
         std::vector<std::string> used;
+        // the keys its users could take (their properties that their
+        // package material declares), for the message about a key none takes
+        std::vector<std::string> takeable;
     };
     std::vector<Material> materials_;
     std::vector<int> group_material_;

@@ -56,9 +56,11 @@ struct @CLASS@ {
 
     // Every property, by kind (plab/contact_model.hpp, plab::prop): number
     // (scene key, name, SI unit, default, valid range, flags, doc, and how
-    // two materials' values mix in a contact between them), integer,
-    // boolean, choice (named values: the law gets the name's index) and
-    // group (a group of the scene by name: the law gets its index).
+    // two materials' values mix in a contact between them: for a property
+    // the model takes from a material, `using material = ...;`, see
+    // docs/writing-a-contact-model.md), integer, boolean, choice (named
+    // values: the law gets the name's index) and group (a group of the
+    // scene by name: the law gets its index).
     enum Prop : int { stiffness, damping_ratio, tension, prop_count };
     static constexpr plab_property_desc properties[] = {
         plab::prop::number("k", "normal stiffness", "N/m", 1e6, 0.0, std::numeric_limits<double>::infinity(),

@@ -244,9 +244,11 @@ double default_range(const plab_contact_model_desc& d) {
 }
 
 // One property for --describe: key, name, kind (a choice's names, a
-// group's "none"), unit, default, range, mixing rule, doc.
-void describe_property(const plab_property_desc& q) {
+// group's "none"), unit, default, range, mixing rule, doc; "(material M)"
+// for one that a scene material may give (its package material declares it).
+void describe_property(const plab_property_desc& q, const plab_material_desc* material) {
     std::cout << "    " << q.key << "  " << q.name;
+    if (material_property(material, q.key)) std::cout << " (material " << material->name << ")";
     switch (q.kind) {
     case PLAB_KIND_BOOL:
         std::cout << ", bool (true | false), default " << (q.default_value != 0 ? "true" : "false");
@@ -270,13 +272,28 @@ void describe_property(const plab_property_desc& q) {
     std::cout << "\n        " << q.doc << "\n";
 }
 
+// The package material a model or pass takes from, for --describe.
+const plab_material_desc* describe_material(const PluginHost& host, const char* name, bool pass) {
+    const plab_material_desc* m = name ? host.material(name) : nullptr;
+    if (!m) {
+        std::cout << "  material: none (a scene's materials give it no values)\n";
+        return nullptr;
+    }
+    std::cout << "  material: " << m->name << ", " << m->doc << "\n    "
+              << (pass ? "the scene material the pass names (\"material\": NAME)" : "a scene material of the rule's groups")
+              << " gives the properties marked (material " << m->name << ")\n";
+    return m;
+}
+
 void describe(const PluginHost& host, const std::string& name) {
     if (const plab_contact_model_desc* d = host.model(name)) {
         std::cout << "contact model " << d->name << "  (" << host.library_of_model(name) << ")\n  " << d->doc << "\n"
                   << "  activity range: active while the " << (d->range_kind == PLAB_RANGE_GAP ? "surface gap" : "centre distance")
                   << " <= a value set by the properties (" << default_range(*d) << " m with the defaults)\n"
-                  << "  stable timestep: " << d->timestep_rule << "\n  properties:\n";
-        for (uint32_t p = 0; p < d->property_count; ++p) describe_property(d->properties[p]);
+                  << "  stable timestep: " << d->timestep_rule << "\n";
+        const plab_material_desc* material = describe_material(host, d->material, false);
+        std::cout << "  properties:\n";
+        for (uint32_t p = 0; p < d->property_count; ++p) describe_property(d->properties[p], material);
         std::cout << "  history slots:\n";
         for (uint32_t h = 0; h < d->history_count; ++h)
             std::cout << "    " << d->history[h].name << " (default " << d->history[h].default_value << ", "
@@ -288,8 +305,9 @@ void describe(const PluginHost& host, const std::string& name) {
         static const char* phases[] = {"pre-force", "post-force", "integrate", "rates-done", "pre-drift"};
         std::cout << "pass " << p->name << " (" << phases[p->phase] << ", stage " << p->stage << ")  ("
                   << host.library_of_pass(name) << ")\n  " << p->doc << "\n";
+        const plab_material_desc* material = describe_material(host, p->material, true);
         if (p->property_count > 0) std::cout << "  properties:\n";
-        for (uint32_t q = 0; q < p->property_count; ++q) describe_property(p->properties[q]);
+        for (uint32_t q = 0; q < p->property_count; ++q) describe_property(p->properties[q], material);
         for (uint32_t f = 0; f < p->field_count; ++f)
             std::cout << "  field " << p->fields[f].name << " [" << p->fields[f].unit << "]\n";
         return;
@@ -317,6 +335,7 @@ int cmd_plugins(const std::vector<std::string>& args) {
             std::cout << path << "\n";
             for (const auto& m : lib.models) std::cout << "  model " << m << "\n";
             for (const auto& p : lib.passes) std::cout << "  pass  " << p << "\n";
+            for (const auto& m : lib.materials) std::cout << "  material " << m << "\n";
         } catch (const PluginError& e) {
             std::cout << path << "\n  REFUSED: " << e.what() << "\n";
         }

@@ -40,7 +40,7 @@ std::vector<PluginUse> plugins_used(const json& scene, const std::string& scene_
         PluginUse u;
         u.name = p.get<std::string>();
         u.file = host.resolve(u.name, scene_dir);
-        u.abi = PLAB_ABI_VERSION;  // the host loads no other
+        u.abi = PLAB_ABI_VERSION;  // this plab's (it loads no newer minor and no other major)
         for (const auto& lib : host.libraries())
             if (fs::equivalent(lib.path, u.file)) {
                 for (const auto& m : lib.models) u.provides += (u.provides.empty() ? "" : ", ") + ("model " + m);
@@ -72,7 +72,9 @@ void load_plugins_of(CheckpointReader& in, PluginHost& host, const std::string& 
         u.provides = in.str();
         const std::string what = "plug-in '" + u.name + "' (" + (u.provides.empty() ? "no models" : u.provides) +
                                  "; written with " + u.file + ", plug-in ABI " + abi_text(u.abi) + ")";
-        if (u.abi != PLAB_ABI_VERSION)
+        // (as the host loads plug-ins: the same major version, a minor no
+        // newer than this plab's, whose additions change no checkpoint)
+        if (u.abi >> 16 != PLAB_ABI_MAJOR || (u.abi & 0xffffu) > PLAB_ABI_MINOR)
             in.fail("it needs " + what + " but this plab speaks plug-in ABI " + abi_text(PLAB_ABI_VERSION));
         std::string file;
         try {

@@ -89,6 +89,9 @@ void Simulation::load_plugins(const Node& n) {
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node p = n.at(i);
         const std::string name = p.string();
+        if (const std::string now = PluginHost::merged_into(name); !now.empty())
+            spdlog::warn("{}: \"{}\" is part of the library \"{}\" now (physics packages, docs/architecture.md), "
+                         "which it loads; list \"{}\" instead", p.path(), name, now, now);
         std::string file;
         try {
             file = host_->resolve(name, scene_dir_);
@@ -201,6 +204,8 @@ void Simulation::load_contact_models(const Node& n) {
                         m >= 0 && std::find(mats[s].begin(), mats[s].end(), m) == mats[s].end())
                         mats[s].push_back(m);
             const std::vector<std::string>& groups = w.group_names();
+            // what a scene material may give the model: its package material's properties
+            const plab_material_desc* material = d->material ? host_->material(d->material) : nullptr;
             if (rule.has("calibrate")) {
                 // calibrated values first; explicit properties override them
                 const Node cal = rule.at("calibrate");
@@ -213,12 +218,12 @@ void Simulation::load_contact_models(const Node& n) {
                 const Node merged_rule(merged, rule.path());
                 std::vector<double> values =
                     read_properties(merged_rule, d->properties, d->property_count, "model " + model, groups);
-                materials_->fill(merged_rule, mats, d->properties, d->property_count, w.gravity, groups, values);
+                materials_->fill(merged_rule, mats, d->properties, d->property_count, material, w.gravity, groups, values);
                 check_required_properties(merged_rule, d->properties, d->property_count, values, "model " + model, groups);
                 instance = w.add_instance(model, std::move(values));
             } else {
                 std::vector<double> values = read_properties(rule, d->properties, d->property_count, "model " + model, groups);
-                materials_->fill(rule, mats, d->properties, d->property_count, w.gravity, groups, values);
+                materials_->fill(rule, mats, d->properties, d->property_count, material, w.gravity, groups, values);
                 check_required_properties(rule, d->properties, d->property_count, values, "model " + model, groups);
                 instance = w.add_instance(model, std::move(values));
             }
@@ -332,8 +337,14 @@ void Simulation::load_passes(const Node& n) {
         const std::vector<std::string>& groups = world_->group_names();
         std::vector<double> values = read_properties(p, d->properties, d->property_count, "pass " + name, groups);
         std::vector<std::vector<int>> mats(1);
-        if (p.has("material")) mats[0].push_back(materials_->find(p.at("material")));
-        materials_->fill(p, mats, d->properties, d->property_count, world_->gravity, groups, values);
+        if (p.has("material")) {
+            if (!d->material)
+                p.at("material").fail("pass " + name + " takes no properties from a material (it names no package "
+                                      "material: plab plugins --describe " + name + ")");
+            mats[0].push_back(materials_->find(p.at("material")));
+        }
+        const plab_material_desc* material = d->material ? host_->material(d->material) : nullptr;
+        materials_->fill(p, mats, d->properties, d->property_count, material, world_->gravity, groups, values);
         check_required_properties(p, d->properties, d->property_count, values, "pass " + name, groups);
         world_->add_pass(name, std::move(values));
     }

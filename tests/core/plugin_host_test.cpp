@@ -44,6 +44,20 @@ TEST_CASE("the host finds the linear model and the coordination pass in its buil
     CHECK(host.model("linear")->property_count == 7);
 }
 
+// The SPH passes joined the sph model in one library, plab_sph: a scene
+// or checkpoint that names the former library sph_passes loads it.
+TEST_CASE("the former library name sph_passes resolves to plab_sph, the SPH package's one library", "[host]") {
+    PluginHost host;
+    CHECK(PluginHost::merged_into("sph_passes") == "sph");
+    CHECK(PluginHost::merged_into("linear").empty());
+    CHECK(host.resolve("sph_passes") == host.resolve("sph"));
+    const LoadedLibrary& lib = host.load(host.resolve("sph_passes"));
+    CHECK(lib.models == std::vector<std::string>{"sph"});
+    CHECK(host.pass("sph_eos") != nullptr);
+    CHECK(host.pass("sph_xsph") != nullptr);
+    CHECK(host.library_of_pass("sph_eos") == host.library_of_model("sph"));
+}
+
 TEST_CASE("a library built for another ABI version is refused, naming the file and both versions", "[host]") {
     PluginHost host;
     const std::string msg = refusal(host, "wrong_abi");
@@ -181,4 +195,60 @@ TEST_CASE("linear with its io declaration gives bit for bit the state of the sam
         CHECK(std::get<3>(declared) > 0);
         CHECK(declared == undeclared);
     }
+}
+
+// ABI 2.1: materials (abi.h plab_material_desc), the properties a package's
+// models and passes share, registered once or alike by each user.
+TEST_CASE("a material is registered with the model and pass that take from it, alike each time", "[host][materials]") {
+    PluginHost host;
+    const LoadedLibrary& lib = host.load(test_plugin("material_probe"));
+    CHECK(lib.materials == std::vector<std::string>{"probe_solid"});
+    const plab_material_desc* m = host.material("probe_solid");
+    REQUIRE(m != nullptr);
+    CHECK(m->property_count == 2);
+    CHECK(std::string(host.model("material_spring")->material) == "probe_solid");
+    CHECK(std::string(host.pass("material_pass")->material) == "probe_solid");
+    CHECK(material_property(m, "k") != nullptr);
+    CHECK(material_property(m, "c") == nullptr);  // the model's own
+    CHECK(host.material("no_such") == nullptr);
+    // the shipped models of ABI 2.0 style name none
+    host.load(host.resolve("coordination_number"));
+    CHECK(host.pass("coordination_number")->material == nullptr);
+}
+
+TEST_CASE("a second registration of a material with other properties is refused, naming the first library", "[host][materials]") {
+    PluginHost host;
+    host.load(test_plugin("material_probe"));
+    const std::string msg = refusal(host, "material_conflict");
+    CHECK_THAT(msg, Contains("material_conflict.so refused: material 'probe_solid' is already registered by") &&
+                        Contains("material_probe.so with other properties (1 properties against 2)"));
+    CHECK(host.material("probe_solid")->property_count == 2);
+    // loaded alone, the same library is well-formed
+    PluginHost fresh;
+    CHECK(refusal(fresh, "material_conflict").empty());
+}
+
+TEST_CASE("a model that declares a property of its material otherwise is refused, naming the difference", "[host][materials]") {
+    PluginHost host;
+    const std::string msg = refusal(host, "material_mismatch");
+    CHECK_THAT(msg, Contains("model 'mismatch_spring': property k is a property of its material 'stiff_solid', declared "
+                             "differently (default 100000 against 200000 in the material)"));
+    CHECK(host.model("mismatch_spring") == nullptr);
+    CHECK(host.material("stiff_solid") == nullptr);  // rolled back with the library
+}
+
+TEST_CASE("a model that names a material no library registered is refused", "[host][materials]") {
+    PluginHost host;
+    CHECK_THAT(refusal(host, "material_unregistered"),
+               Contains("model 'lone_spring': takes its shared properties from the material 'nowhere_solid', which is "
+                        "not registered"));
+}
+
+TEST_CASE("a library built against ABI 2.0 loads, its descriptions read as naming no material", "[host][materials]") {
+    PluginHost host;
+    CHECK(refusal(host, "abi20").empty());
+    REQUIRE(host.model("abi20_spring") != nullptr);
+    CHECK(host.model("abi20_spring")->material == nullptr);
+    REQUIRE(host.pass("abi20_pass") != nullptr);
+    CHECK(host.pass("abi20_pass")->material == nullptr);
 }

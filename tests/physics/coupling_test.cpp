@@ -5,7 +5,7 @@
 // sedimentation case (thesis §7.1) within its stated tolerance.
 #include "simulation.hpp"
 
-#include "../../plugins/coupling_fluid_particle/drag_law.hpp"
+#include <plab/coupling/drag_law.hpp>
 #include "../support/sph_boundary.hpp"
 #include "../support/case_scene.hpp"
 #include "../support/study_run.hpp"
@@ -85,7 +85,7 @@ json blob_with_solids(int dim) {
     json v1 = dim == 2 ? json{0.3, -0.2} : json{0.3, -0.2, 0.1};
     json v2 = dim == 2 ? json{-0.1, 0.25} : json{-0.1, 0.25, -0.2};
     return {{"dimension", dim},
-            {"plugins", {"sph", "sph_passes", "coupling_fluid_particle"}},
+            {"plugins", {"sph", "coupling_fluid_particle"}},
             {"bodies",
              {{{"type", "lattice"}, {"group", "fluid"}, {"packing", dim == 2 ? "square" : "cubic"},
                {"box", {{"min", box_min}, {"max", box_max}}}, {"radius", dp / 2}, {"spacing", dp}, {"mass", mass},
@@ -247,7 +247,7 @@ TEST_CASE("a structure floor in the SPH sums carries the weight of the water abo
     const json scene = {
         {"dimension", 2},
         {"gravity", {0, -g}},
-        {"plugins", {"sph", "sph_passes", "coupling_fluid_structure"}},
+        {"plugins", {"sph", "coupling_fluid_structure"}},
         {"bodies",
          {{{"type", "lattice"}, {"group", "fluid"}, {"packing", "square"}, {"box", {{"min", {0, 0}}, {"max", {0.1, 0.1}}}},
            {"radius", dp / 2}, {"spacing", dp}, {"mass", 1000 * dp * dp}, {"fix", {"rotation"}}},

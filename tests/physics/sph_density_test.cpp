@@ -5,7 +5,7 @@
 // with the normalised form filtering the continuity density.
 #include "simulation.hpp"
 
-#include "../../contact_models/sph/sph_kernels.hpp"
+#include <plab/sph/kernels.hpp>
 #include "../support/static_tank.hpp"
 
 #include <catch2/catch.hpp>
@@ -31,7 +31,7 @@ json resting_block(int normalised, int side = 20, double jitter = 0) {
     const json water = {{"groups", {"fluid"}}, {"smoothing_length", 1.3 * dp}, {"kernel", "cubic"},
                         {"rest_density", rho0}, {"speed_of_sound", 10}, {"gamma", 7}};
     return {{"dimension", 2},
-            {"plugins", {"sph", "sph_passes"}},
+            {"plugins", {"sph"}},
             {"bodies", {{{"type", "lattice"}, {"group", "fluid"}, {"packing", "square"},
                          {"box", {{"min", {0, 0}}, {"max", {side * dp, side * dp}}}}, {"radius", dp / 2}, {"spacing", dp},
                          {"mass", rho0 * dp * dp}, {"fix", {"rotation"}}, {"jitter", {{"position", jitter * dp}}}}}},

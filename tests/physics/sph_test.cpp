@@ -4,7 +4,7 @@
 // static tank (thesis 5.1) within its stated tolerance.
 #include "simulation.hpp"
 
-#include "../../contact_models/sph/sph_kernels.hpp"
+#include <plab/sph/kernels.hpp>
 #include "../support/static_tank.hpp"
 
 #include <catch2/catch.hpp>
@@ -70,7 +70,7 @@ json free_blob(int dim) {
                               : json{{"min", {0, 0, 0}}, {"max", {0.05, 0.05, 0.05}}};
     const double mass = dim == 2 ? 1000 * dp * dp : 1000 * dp * dp * dp;
     return {{"dimension", dim},
-            {"plugins", {"sph", "sph_passes"}},
+            {"plugins", {"sph"}},
             {"bodies", {{{"type", "lattice"}, {"group", "fluid"}, {"packing", dim == 2 ? "square" : "cubic"},
                          {"box", box}, {"radius", dp / 2}, {"spacing", dp}, {"mass", mass}, {"fix", {"rotation"}},
                          {"jitter", {{"position", 0.1 * dp}, {"velocity", 0.3}, {"seed", 3}}}}}},

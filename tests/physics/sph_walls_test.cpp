@@ -26,7 +26,7 @@ json fluid_scene(const json& fluid_box, double dp, const json& boundary_blocks, 
     for (const json& b : boundary_blocks) bodies.push_back(b);
     return {{"dimension", 2},
             {"gravity", {0, -gravity}},
-            {"plugins", {"sph", "sph_passes"}},
+            {"plugins", {"sph"}},
             {"bodies", bodies},
             {"materials", {{"water", {{"groups", {"fluid", "boundary"}}, {"smoothing_length", 1.3 * dp}, {"kernel", "wendland_c2"},
                                       {"rest_density", 1000}, {"speed_of_sound", c0}, {"gamma", 7}}}}},

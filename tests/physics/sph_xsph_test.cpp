@@ -25,7 +25,7 @@ json noisy_block(double epsilon) {
     if (epsilon > 0)
         passes.push_back({{"name", "sph_xsph"}, {"material", "water"}, {"properties", {{"epsilon", epsilon}}}});
     return {{"dimension", 2},
-            {"plugins", {"sph", "sph_passes"}},
+            {"plugins", {"sph"}},
             {"bodies", {{{"type", "lattice"}, {"group", "fluid"}, {"packing", "square"},
                          {"box", {{"min", {0, 0}}, {"max", {10 * dp, 10 * dp}}}}, {"radius", dp / 2}, {"spacing", dp},
                          {"mass", 1000 * dp * dp}, {"fix", {"rotation"}},

@@ -1,7 +1,7 @@
 // The `linear` law without its `io` declaration: the host then packs every
 // input and reads back every output (abi.h: as before ABI 5). A scene run
 // with it must give bit for bit the state of the same scene with `linear`.
-#include "../../contact_models/linear/linear_law.hpp"
+#include <plab/dem/linear_law.hpp>
 
 #include <algorithm>
 

@@ -3,6 +3,8 @@
 // group with two materials are errors naming the JSON paths.
 #include <simulation.hpp>
 
+#include <host/plugin_host.hpp>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -19,7 +21,7 @@ json two_ball_scene() {
     return json::parse(R"({
       "dimension": 2,
       "gravity": [0, -9.81],
-      "plugins": ["sph", "sph_passes"],
+      "plugins": ["sph"],
       "bodies": [
         {"type": "ball", "group": "fluid", "position": [0, 0.01], "radius": 0.005, "mass": 0.1, "fix": ["all"]},
         {"type": "ball", "group": "boundary", "position": [0, 0], "radius": 0.0025, "mass": 0.025, "fix": ["all"]}
@@ -131,4 +133,85 @@ TEST_CASE("a speed of sound below 10 x the expected maximum speed is refused wit
     plab::Simulation sim(scene);
     CHECK(model_property(sim.world(), "speed_of_sound") == 30);
     CHECK(sim.summary()["speed_of_sound"][0]["rule"].get<std::string>() == "given, checked >= 10 x expected_max_speed");
+}
+
+// ABI 2.1: a scene material gives a model or pass the properties its
+// package's material declares (abi.h plab_material_desc), and no others.
+namespace {
+
+std::string test_plugin(const std::string& name) { return std::string(PLAB_TEST_PLUGIN_DIR) + "/" + name + ".so"; }
+
+std::string refusal(const json& scene) {
+    try {
+        plab::Simulation sim(scene);
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+// Two touching balls of groups a and b with the materials soft and hard;
+// material_spring (tests/plugins/material_probe.cpp) takes k from the
+// material probe_solid, and has a property c of its own.
+TEST_CASE("a scene material gives the properties the model's package material declares, mixed by their rule", "[scene][materials]") {
+    json scene = json::parse(R"({
+      "dimension": 2,
+      "bodies": [
+        {"type": "ball", "group": "a", "position": [0, 0], "radius": 0.01, "density": 1000},
+        {"type": "ball", "group": "b", "position": [0.0199, 0], "radius": 0.01, "density": 1000}
+      ],
+      "materials": {"soft": {"groups": ["a"], "k": 1e4}, "hard": {"groups": ["b"], "k": 4e4}},
+      "contact_models": [{"groups": ["a", "b"], "model": "material_spring"}]
+    })");
+    scene["plugins"] = {test_plugin("material_probe")};
+    {
+        plab::Simulation sim(scene);
+        CHECK(sim.world().instances().at(0)->property("k") == Approx(2 * 1e4 * 4e4 / 5e4).epsilon(1e-15));  // harmonic
+        CHECK(sim.world().instances().at(0)->property("c") == 0);
+    }
+    // c is the model's own: a scene material that states it gives it nothing, and is told so
+    scene["materials"]["soft"]["c"] = 5;
+    CHECK_THAT(refusal(scene), Contains("scene.materials.soft.c: no contact model or pass using the material \"soft\" "
+                                        "takes a property 'c' from it; they take k: the properties their package's "
+                                        "material declares"));
+    scene["materials"]["soft"].erase("c");
+    // a pass takes from the scene material it names what its package material declares (fric)
+    scene["materials"]["hard"]["fric"] = 0.25;
+    scene["passes"] = {{{"name", "material_pass"}, {"material", "hard"}}};
+    plab::Simulation sim(scene);
+    sim.world().prepare();
+    CHECK(sim.world().fields.column(sim.world().fields.index("material_pass_fric"))[0] == 0.25);
+}
+
+TEST_CASE("a model or pass that names no package material takes nothing from a scene material", "[scene][materials]") {
+    // coordination_number names no material: a scene that gives it one is told so
+    json scene = two_ball_scene();
+    scene["plugins"].push_back("coordination_number");
+    scene["passes"].push_back({{"name", "coordination_number"}, {"material", "water"}});
+    CHECK_THAT(refusal(scene), Contains("scene.passes[2].material: pass coordination_number takes no properties from a "
+                                        "material (it names no package material"));
+    // mu is the sph model's own (not the fluid's material): before ABI 2.1 a
+    // scene material's mu reached it by its name, now it is a key no user takes
+    scene = two_ball_scene();
+    scene["materials"]["water"]["mu"] = 1e-3;
+    CHECK_THAT(refusal(scene), Contains("scene.materials.water.mu: no contact model or pass using the material \"water\" "
+                                        "takes a property 'mu' from it; they take smoothing_length, kernel, "
+                                        "rest_density, speed_of_sound, gamma"));
+}
+
+TEST_CASE("the SPH package's material is one declaration, registered alike by the sph and coupling libraries", "[scene][materials][host]") {
+    plab::PluginHost host;
+    for (const char* lib : {"coupling_fluid_particle", "sph", "coupling_fluid_structure", "coupling_soft_repulsive"})
+        CHECK_NOTHROW(host.load(host.resolve(lib)));
+    const plab_material_desc* m = host.material("sph_fluid");
+    REQUIRE(m != nullptr);
+    CHECK(m->property_count == 6);
+    for (const char* model : {"sph", "fluid_particle", "coupling_soft_repulsive"})
+        CHECK(std::string(host.model(model)->material) == "sph_fluid");
+    for (const char* pass : {"sph_eos", "sph_wall_pressure", "sph_density_summation", "sph_xsph", "fluid_particle_drag",
+                             "structure_sph_state"})
+        CHECK(std::string(host.pass(pass)->material) == "sph_fluid");
+    CHECK(host.pass("sph_density_integration")->material == nullptr);  // (boundary_group only)
 }

@@ -133,7 +133,7 @@ TEST_CASE("a group property the scene must give is refused when missing", "[scen
 
 TEST_CASE("a pass's bool and group properties are read by kind too", "[scene][kinds][sph]") {
     json s = json::parse(R"({
-      "dimension": 2, "plugins": ["sph", "sph_passes"],
+      "dimension": 2, "plugins": ["sph"],
       "bodies": [{"type": "ball", "group": "fluid", "position": [0, 0.01], "radius": 0.005, "mass": 0.1, "fix": ["all"]},
                  {"type": "ball", "group": "boundary", "position": [0, 0], "radius": 0.0025, "mass": 0.025, "fix": ["all"]}],
       "contact_models": [{"groups": ["fluid", "boundary"], "model": "sph"}],

@@ -303,7 +303,7 @@ json small_dam_break(double mach_factor, double jitter = 0, double scale = 1) {
     if (jitter > 0) fluid["jitter"] = {{"position", jitter * dp}, {"seed", 5}};
     return {{"dimension", 2},
             {"gravity", {0, -g}},
-            {"plugins", {"sph", "sph_passes"}},
+            {"plugins", {"sph"}},
             {"bodies", {fluid, block(-t, -t, length + t, 0), block(-t, 0, 0, 2 * H), block(length, 0, length + t, 2 * H)}},
             {"contact_models", {{{"groups", {"fluid", "fluid"}}, {"model", "sph"}, {"properties", sph}},
                                 {{"groups", {"fluid", "boundary"}}, {"model", "sph"}, {"properties", sph}}}},

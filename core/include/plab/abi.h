@@ -5,7 +5,7 @@
  *
  * A library exports two symbols:
  *   uint32_t plab_plugin_abi_version(void);        -- PLAB_ABI_VERSION it was built with
- *   int      plab_plugin_init(const plab_registrar*);  -- registers its models/passes
+ *   int      plab_plugin_init(const plab_registrar*);  -- registers its models/passes/materials
  * The host checks the version before calling init: it loads a plug-in of its
  * own major version (PLAB_ABI_MAJOR) and a minor version no newer than its
  * own, and refuses any other by name (a plug-in of ABI 1 returns 1 to 7).
@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 #define PLAB_ABI_MAJOR 2u
-#define PLAB_ABI_MINOR 0u
+#define PLAB_ABI_MINOR 1u
 /* what plab_plugin_abi_version() returns: major << 16 | minor (ABI 1
  * returned its plain version number, 1 to 7, whose major reads as 0) */
 #define PLAB_ABI_VERSION ((PLAB_ABI_MAJOR << 16) | PLAB_ABI_MINOR)
@@ -98,6 +98,29 @@ typedef struct plab_property_desc {
     uint32_t choice_count;      /* value i is choices[i]; NULL / 0 otherwise */
     const char* doc;
 } plab_property_desc;
+
+/* A material (ABI 2.1): a named set of properties that the models and
+ * passes of a package share, e.g. the SPH package's "sph_fluid" (rest
+ * density, speed of sound, smoothing length, kernel, ...). A scene states
+ * their values once per group (scene.materials); a model or pass that names
+ * the material (its description's `material`) takes from the scene
+ * materials of its groups the values of those of its own properties that
+ * the material declares, and no others. Such a property is declared in the
+ * model's or pass's `properties` as the material declares it (the same key,
+ * kind, unit, default, range, flags, mixing rule and choices; name and doc
+ * may differ), which the host checks; a model or pass that names a material
+ * declares at least one of its properties. Several libraries may register
+ * one material, each time with the same properties in the same order (a
+ * package's SDK header declares them once); the host refuses another. A
+ * material is registered before the models and passes that name it, by
+ * their library or by one loaded before. */
+typedef struct plab_material_desc {
+    uint32_t size;     /* sizeof(plab_material_desc) */
+    const char* name;  /* e.g. "sph_fluid"; materials have names of their own (not models' or passes') */
+    const char* doc;
+    uint32_t property_count;
+    const plab_property_desc* properties;
+} plab_material_desc;
 
 /* What a history slot does when the two ends of a contact are swapped. */
 #define PLAB_SWAP_KEEP 0u   /* scalar (e.g. bond state) */
@@ -236,6 +259,11 @@ typedef struct plab_contact_model_desc {
     uint32_t flags;
     /* PLAB_IO_* bits (0: every input and output, see below) */
     uint32_t io;
+    /* ABI 2.1: the name of the material (plab_material_desc) whose
+     * properties this model takes from a scene's materials, or NULL: it takes
+     * none. A description of ABI 2.0 (a `size` that ends before this member)
+     * is read as NULL. */
+    const char* material;
 } plab_contact_model_desc;
 
 /* `io`: what a model reads and writes beyond what every model
@@ -346,6 +374,9 @@ typedef struct plab_pass_desc {
     void* (*create)(const double* props);
     void (*destroy)(void* state);
     int (*run)(void* state, const double* props, const plab_pass_view* view);
+    /* ABI 2.1: as plab_contact_model_desc.material; a scene's pass names the
+     * scene material it takes the values from ("material": "water") */
+    const char* material;
 } plab_pass_desc;
 
 /* ---- private state of a pass, for checkpoints (optional) ---------------- */
@@ -378,6 +409,7 @@ typedef struct plab_registrar {
     int (*register_contact_model)(void* host, const plab_contact_model_desc* desc);
     int (*register_pass)(void* host, const plab_pass_desc* desc);
     int (*register_pass_state)(void* host, const plab_pass_state_hooks* hooks);
+    int (*register_material)(void* host, const plab_material_desc* desc); /* ABI 2.1 */
 } plab_registrar;
 
 typedef uint32_t (*plab_plugin_abi_version_fn)(void);

@@ -29,7 +29,24 @@
 // `io` (uint32_t, PLAB_IO_* of abi.h): the optional inputs the law reads and
 // outputs it writes, e.g. `PLAB_IO_EFF_MASS` for a law that reads only the
 // effective mass besides normal, gap and relative velocity; the host then
-// skips the rest (PLAB_IO_DECLARED is added for you).
+// skips the rest (PLAB_IO_DECLARED is added for you);
+// `material` (a type, `using material = MyMaterial;`): the material whose
+// properties the model takes from a scene's materials (below).
+//
+// A material (abi.h plab_material_desc, ABI 2.1) is a class with the
+// properties the models and passes of a package share:
+//
+//   struct MyMaterial {
+//       static constexpr const char* name = "my_solid";
+//       static constexpr const char* doc = "...";
+//       static constexpr plab_property_desc properties[] = {youngs_modulus, friction};  // constexpr descriptions
+//   };
+//
+// A model or pass with `using material = MyMaterial;` lists among its own
+// `properties` those of the material it uses, with the same descriptions
+// (`youngs_modulus`, ...), and gets, for each, the value a scene material of
+// its groups gives; add_contact_model and add_pass register the material
+// before the model or pass (a second registration, alike, is accepted).
 //
 // Descriptions are built with the constexpr functions below, which set each
 // struct's `size` (abi.h): a property of each kind (plab::prop::number,
@@ -128,6 +145,17 @@ constexpr plab_field_desc field_desc(const char* name, const char* unit, double 
     return {sizeof(plab_field_desc), name, unit, default_value};
 }
 
+// The C description of material Mat (static storage), and its registration.
+template <class Mat> const plab_material_desc* material_desc() {
+    static const plab_material_desc d = {sizeof(plab_material_desc), Mat::name, Mat::doc,
+                                         uint32_t(sizeof(Mat::properties) / sizeof(Mat::properties[0])), Mat::properties};
+    return &d;
+}
+template <class Mat> int add_material(const plab_registrar* r) {
+    if (r->size < sizeof(plab_registrar)) return 1;  // a host older than these headers
+    return r->register_material(r->host, material_desc<Mat>());
+}
+
 // One contact of a batch: typed access to the host's columns at index k.
 class Contact {
 public:
@@ -222,6 +250,14 @@ struct has_law_rows<M, std::void_t<decltype(std::declval<const M&>().law_rows(st
     : std::true_type {};
 template <class M, class = void> struct has_history : std::false_type {};
 template <class M> struct has_history<M, std::void_t<decltype(M::history)>> : std::true_type {};
+template <class M, class = void> struct has_material : std::false_type {};
+template <class M> struct has_material<M, std::void_t<typename M::material>> : std::true_type {};
+
+// Registers the material of a model or pass M, if it has one.
+template <class M> int add_material_of(const plab_registrar* r) {
+    if constexpr (has_material<M>::value) return add_material<typename M::material>(r);
+    return 0;
+}
 
 template <class T, std::size_t N> constexpr uint32_t count_of(const T (&)[N]) { return uint32_t(N); }
 
@@ -315,6 +351,7 @@ template <class M> const plab_contact_model_desc* contact_model_desc() {
         if constexpr (detail::has_rates<M>::value) x.rates_stage = M::rates_stage ? 1u : 0u;
         if constexpr (detail::has_flags<M>::value) x.flags = M::flags;
         if constexpr (detail::has_io<M>::value) x.io = M::io | PLAB_IO_DECLARED;
+        if constexpr (detail::has_material<M>::value) x.material = M::material::name;
         return x;
     }();
     return &d;
@@ -322,6 +359,7 @@ template <class M> const plab_contact_model_desc* contact_model_desc() {
 
 template <class M> int add_contact_model(const plab_registrar* r) {
     if (r->size < sizeof(plab_registrar)) return 1;  // a host older than these headers
+    if (const int rc = detail::add_material_of<M>(r)) return rc;
     return r->register_contact_model(r->host, contact_model_desc<M>());
 }
 

@@ -8,6 +8,7 @@
 //       static constexpr uint32_t phase = PLAB_PHASE_POST_FORCE, stage = 0;
 //       static constexpr plab_property_desc properties[] = {plab::prop::...};  // optional
 //       static constexpr plab_field_desc fields[] = {plab::field_desc(...), ...};
+//       using material = MyMaterial;  // optional: properties shared with other plug-ins (contact_model.hpp)
 //       explicit MyPass(const double* props);
 //       void run(const plab_pass_view& v);
 //       // optional, for a pass that keeps state between cycles (checkpoints):
@@ -92,6 +93,7 @@ template <class P> const plab_pass_desc* pass_desc() {
         x.create = &detail::create<P>;
         x.destroy = &detail::destroy<P>;
         x.run = &detail::run_pass<P>;
+        if constexpr (detail::has_material<P>::value) x.material = P::material::name;
         return x;
     }();
     return &d;
@@ -99,6 +101,7 @@ template <class P> const plab_pass_desc* pass_desc() {
 
 template <class P> int add_pass(const plab_registrar* r) {
     if (r->size < sizeof(plab_registrar)) return 1;  // a host older than these headers
+    if (const int rc = detail::add_material_of<P>(r)) return rc;
     const int rc = r->register_pass(r->host, pass_desc<P>());
     if constexpr (detail::has_state<P>::value) {
         static const plab_pass_state_hooks hooks{sizeof(plab_pass_state_hooks), P::name, &detail::save_pass_state<P>, &detail::load_pass_state<P>};

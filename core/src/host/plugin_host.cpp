@@ -5,6 +5,7 @@
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -35,6 +36,22 @@ int cb_register_pass_state(void* host, const plab_pass_state_hooks* h) {
     return static_cast<PluginHost*>(host)->register_pass_state(h);
 }
 
+// Libraries merged into another: the former name loads the new library
+// (the SPH passes joined the sph model in the SPH package's one library).
+const std::map<std::string, std::string>& merged_libraries() {
+    static const std::map<std::string, std::string> merged = {{"sph_passes", "sph"}};
+    return merged;
+}
+
+int cb_register_material(void* host, const plab_material_desc* d) {
+    return static_cast<PluginHost*>(host)->register_material(d);
+}
+
+// The smallest model and pass descriptions this host reads: ABI 2.0's,
+// which end before `material` (abi.h); what they lack reads as zero.
+constexpr std::size_t kMinModelDescSize = offsetof(plab_contact_model_desc, material);
+constexpr std::size_t kMinPassDescSize = offsetof(plab_pass_desc, material);
+
 std::string fmt(double v) {
     std::ostringstream s;
     s << v;
@@ -61,10 +78,11 @@ std::string builtin_plugin_dir() {
     return PLAB_PLUGIN_DIR;
 }
 
-std::string too_small(const std::string& what, const char* type, uint32_t size, std::size_t needed) {
+std::string too_small(const std::string& what, const char* type, uint32_t size, std::size_t needed,
+                      uint32_t minor = PLAB_ABI_MINOR) {
     return what + " is " + std::to_string(size) + " bytes (its `size`), smaller than the " + std::to_string(needed) +
            " bytes of " + type + " in plug-in ABI " + std::to_string(PLAB_ABI_MAJOR) + "." +
-           std::to_string(PLAB_ABI_MINOR) + "; rebuild it against this ParticleLab's headers";
+           std::to_string(minor) + "; rebuild it against this ParticleLab's headers";
 }
 
 // The host's copy of a plug-in's description array, read with the stride of
@@ -267,6 +285,29 @@ std::vector<std::string> check_model_desc(const plab_contact_model_desc& d) {
     return bad;
 }
 
+const plab_property_desc* material_property(const plab_material_desc* m, const char* key) {
+    if (!m || !key) return nullptr;
+    for (uint32_t i = 0; i < m->property_count; ++i)
+        if (m->properties[i].key && std::strcmp(m->properties[i].key, key) == 0) return &m->properties[i];
+    return nullptr;
+}
+
+std::string declaration_difference(const plab_property_desc& a, const plab_property_desc& b) {
+    const auto text = [](const char* s) { return std::string(s ? s : ""); };
+    if (a.kind != b.kind) return std::string("kind ") + kind_name(a.kind) + " against " + kind_name(b.kind);
+    if (text(a.unit) != text(b.unit)) return "unit " + text(a.unit) + " against " + text(b.unit);
+    if (!(a.default_value == b.default_value))
+        return "default " + fmt(a.default_value) + " against " + fmt(b.default_value);
+    if (!(a.min_value == b.min_value) || !(a.max_value == b.max_value) || a.flags != b.flags)
+        return "range " + range_text(a) + " against " + range_text(b) + (a.flags != b.flags ? " (flags)" : "");
+    if (a.mixing != b.mixing) return std::string("mixing ") + mixing_name(a.mixing) + " against " + mixing_name(b.mixing);
+    bool same_choices = a.choice_count == b.choice_count && (a.choices == nullptr) == (b.choices == nullptr);
+    for (uint32_t c = 0; same_choices && a.choices && c < a.choice_count; ++c)
+        same_choices = text(a.choices[c]) == text(b.choices[c]);
+    if (!same_choices) return range_text(a) + " against " + range_text(b);
+    return "";
+}
+
 PluginHost::PluginHost() {
     if (const std::string builtin = builtin_plugin_dir(); !builtin.empty()) dirs_.push_back(builtin);
     if (const char* env = std::getenv("PLAB_PLUGIN_PATH")) {
@@ -296,6 +337,7 @@ bool file_exists(const fs::path& p) {
 std::string PluginHost::resolve(const std::string& ref, const std::string& relative_to) const {
     const bool is_path = ref.find('/') != std::string::npos || fs::path(ref).extension() == ".so";
     std::vector<std::string> tried;
+    if (const std::string now = merged_into(ref); !is_path && !now.empty()) return resolve(now, relative_to);
     if (is_path) {
         fs::path p(ref);
         if (p.is_relative() && !relative_to.empty()) p = fs::path(relative_to) / p;
@@ -312,6 +354,11 @@ std::string PluginHost::resolve(const std::string& ref, const std::string& relat
         }
     throw PluginError("plug-in '" + ref + "' not found in the search path (" + join(dirs) +
                       "); set PLAB_PLUGIN_PATH or give a path to the .so");
+}
+
+std::string PluginHost::merged_into(const std::string& name) {
+    const auto it = merged_libraries().find(name);
+    return it == merged_libraries().end() ? std::string() : it->second;
 }
 
 std::vector<std::string> PluginHost::discover() const {
@@ -348,9 +395,12 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
     entry.path = path;
     loading_ = path;
     problems_.clear();
+    loading_materials_.clear();
     const auto before_models = models_;
     const auto before_passes = passes_;
-    plab_registrar reg{uint32_t(sizeof(plab_registrar)), this, &cb_register_model, &cb_register_pass, &cb_register_pass_state};
+    const auto before_materials = materials_;
+    plab_registrar reg{uint32_t(sizeof(plab_registrar)), this, &cb_register_model, &cb_register_pass, &cb_register_pass_state,
+                       &cb_register_material};
     const int rc = lib->get<int(const plab_registrar*)>("plab_plugin_init")(&reg);
     loading_.clear();
     if (rc != 0 || !problems_.empty()) {
@@ -360,6 +410,8 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
         for (auto it = passes_.begin(); it != passes_.end();)
             it = before_passes.count(it->first) ? std::next(it)
                                                 : (pass_lib_.erase(it->first), pass_state_.erase(it->first), passes_.erase(it));
+        for (auto it = materials_.begin(); it != materials_.end();)
+            it = before_materials.count(it->first) ? std::next(it) : (material_lib_.erase(it->first), materials_.erase(it));
         std::string why = problems_.empty() ? "plab_plugin_init returned " + std::to_string(rc) : join(problems_, "; ");
         throw PluginError("plug-in library " + path + " refused: " + why);
     }
@@ -367,6 +419,7 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
         if (lib_path == path) entry.models.push_back(name);
     for (const auto& [name, lib_path] : pass_lib_)
         if (lib_path == path) entry.passes.push_back(name);
+    entry.materials = loading_materials_;  // (also those an earlier library registered alike)
     entry.lib = std::move(lib);
     libs_.push_back(std::move(entry));
     return libs_.back();
@@ -374,13 +427,14 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
 
 int PluginHost::register_model(const plab_contact_model_desc* d) {
     if (!d) { problems_.push_back("register_contact_model(NULL)"); return 1; }
-    if (d->size < sizeof(plab_contact_model_desc)) {
+    if (d->size < kMinModelDescSize) {
         problems_.push_back(too_small("a contact model description", "plab_contact_model_desc", d->size,
-                                      sizeof(plab_contact_model_desc)));
+                                      kMinModelDescSize, 0));
         return 1;
     }
     ModelCopy c;
-    std::memcpy(&c.desc, d, sizeof(plab_contact_model_desc));
+    std::memset(&c.desc, 0, sizeof(plab_contact_model_desc));  // (members of a later minor than the plug-in's)
+    std::memcpy(&c.desc, d, std::min<std::size_t>(d->size, sizeof(plab_contact_model_desc)));
     c.desc.size = uint32_t(sizeof(plab_contact_model_desc));
     const std::string name = d->name ? d->name : "?";
     std::vector<std::string> bad;
@@ -397,6 +451,7 @@ int PluginHost::register_model(const plab_contact_model_desc* d) {
     m.desc.fields_accumulated = data_or_null(m.fields_accumulated);
     d = &m.desc;
     bad = check_model_desc(*d);
+    for (const std::string& b : check_material_use(d->material, d->properties, d->property_count)) bad.push_back(b);
     if (!bad.empty()) { problems_.push_back("model '" + name + "': " + join(bad, "; ")); return 1; }
     if (models_.count(name) || passes_.count(name)) {
         const std::string other = models_.count(name) ? model_lib_[name] : pass_lib_[name];
@@ -410,12 +465,13 @@ int PluginHost::register_model(const plab_contact_model_desc* d) {
 
 int PluginHost::register_pass(const plab_pass_desc* d) {
     if (!d) { problems_.push_back("register_pass(NULL)"); return 1; }
-    if (d->size < sizeof(plab_pass_desc)) {
-        problems_.push_back(too_small("a pass description", "plab_pass_desc", d->size, sizeof(plab_pass_desc)));
+    if (d->size < kMinPassDescSize) {
+        problems_.push_back(too_small("a pass description", "plab_pass_desc", d->size, kMinPassDescSize, 0));
         return 1;
     }
     PassCopy c;
-    std::memcpy(&c.desc, d, sizeof(plab_pass_desc));
+    std::memset(&c.desc, 0, sizeof(plab_pass_desc));  // (members of a later minor than the plug-in's)
+    std::memcpy(&c.desc, d, std::min<std::size_t>(d->size, sizeof(plab_pass_desc)));
     c.desc.size = uint32_t(sizeof(plab_pass_desc));
     const std::string name = d->name && *d->name ? d->name : "?";
     std::vector<std::string> bad;
@@ -430,6 +486,7 @@ int PluginHost::register_pass(const plab_pass_desc* d) {
     if (name == "?") bad.push_back("pass has no name");
     if (!d->run) bad.push_back("pass has no run function");
     if (d->phase > PLAB_PHASE_PRE_DRIFT) bad.push_back("pass has an unknown phase");
+    for (const std::string& b : check_material_use(d->material, d->properties, d->property_count)) bad.push_back(b);
     if (!bad.empty()) { problems_.push_back("pass '" + name + "': " + join(bad, "; ")); return 1; }
     if (models_.count(name) || passes_.count(name)) {
         const std::string other = models_.count(name) ? model_lib_[name] : pass_lib_[name];
@@ -461,6 +518,88 @@ int PluginHost::register_pass_state(const plab_pass_state_hooks* h) {
     c.size = uint32_t(sizeof(plab_pass_state_hooks));
     pass_state_[h->pass_name] = &c;
     return 0;
+}
+
+int PluginHost::register_material(const plab_material_desc* d) {
+    if (!d) { problems_.push_back("register_material(NULL)"); return 1; }
+    if (d->size < sizeof(plab_material_desc)) {
+        problems_.push_back(too_small("a material description", "plab_material_desc", d->size, sizeof(plab_material_desc)));
+        return 1;
+    }
+    MaterialCopy c;
+    std::memcpy(&c.desc, d, sizeof(plab_material_desc));
+    c.desc.size = uint32_t(sizeof(plab_material_desc));
+    const std::string name = d->name && *d->name ? d->name : "?";
+    std::vector<std::string> bad;
+    copy_array(d->properties, d->property_count, "property", "plab_property_desc", c.properties, bad);
+    if (bad.empty()) {
+        for (const std::string& b : check_properties(data_or_null(c.properties), uint32_t(c.properties.size()))) bad.push_back(b);
+        if (name == "?") bad.push_back("material has no name");
+        if (!d->doc) bad.push_back("material has no doc text");
+        if (c.properties.empty()) bad.push_back("material declares no properties");
+    }
+    if (!bad.empty()) { problems_.push_back("material '" + name + "': " + join(bad, "; ")); return 1; }
+    // a material several libraries (or models of one) register: the same
+    // properties each time, declared alike, in the same order
+    if (const auto it = materials_.find(name); it != materials_.end()) {
+        const plab_material_desc& known = *it->second;
+        std::string differs;
+        if (known.property_count != c.properties.size())
+            differs = std::to_string(c.properties.size()) + " properties against " + std::to_string(known.property_count);
+        for (uint32_t i = 0; differs.empty() && i < known.property_count; ++i) {
+            const plab_property_desc& a = c.properties[i];
+            const plab_property_desc& b = known.properties[i];
+            if (std::strcmp(a.key, b.key) != 0) differs = "property #" + std::to_string(i) + " " + a.key + " against " + b.key;
+            else if (const std::string why = declaration_difference(a, b); !why.empty()) differs = std::string(a.key) + ": " + why;
+        }
+        if (differs.empty()) {  // registered before, alike
+            if (std::find(loading_materials_.begin(), loading_materials_.end(), name) == loading_materials_.end())
+                loading_materials_.push_back(name);
+            return 0;
+        }
+        problems_.push_back("material '" + name + "' is already registered by " + material_lib_[name] +
+                            " with other properties (" + differs + "); one material, one description");
+        return 1;
+    }
+    MaterialCopy& m = material_copies_.emplace_back(std::move(c));
+    m.desc.properties = data_or_null(m.properties);
+    materials_[name] = &m.desc;
+    material_lib_[name] = loading_;
+    loading_materials_.push_back(name);
+    return 0;
+}
+
+std::vector<std::string> PluginHost::check_material_use(const char* material, const plab_property_desc* p,
+                                                        uint32_t n) const {
+    if (!material) return {};
+    if (!*material) return {"material is an empty name (NULL: no material)"};
+    const auto it = materials_.find(material);
+    if (it == materials_.end())
+        return {std::string("takes its shared properties from the material '") + material +
+                "', which is not registered; register the material before the models and passes that name it "
+                "(plab::add_contact_model and plab::add_pass do), or load the library that declares it first"};
+    std::vector<std::string> bad;
+    uint32_t shared = 0;
+    for (uint32_t i = 0; p && i < n; ++i) {
+        const plab_property_desc* m = material_property(it->second, p[i].key);
+        if (!m) continue;
+        ++shared;
+        if (const std::string why = declaration_difference(p[i], *m); !why.empty())
+            bad.push_back(std::string("property ") + p[i].key + " is a property of its material '" + material +
+                          "', declared differently (" + why + " in the material); take the material's description");
+    }
+    if (shared == 0) {
+        std::vector<std::string> keys;
+        for (uint32_t i = 0; i < it->second->property_count; ++i) keys.push_back(it->second->properties[i].key);
+        bad.push_back(std::string("names the material '") + material + "' but declares none of its properties (" +
+                      join(keys) + ")");
+    }
+    return bad;
+}
+
+const plab_material_desc* PluginHost::material(const std::string& name) const {
+    auto it = materials_.find(name);
+    return it == materials_.end() ? nullptr : it->second;
 }
 
 const plab_pass_state_hooks* PluginHost::pass_state(const std::string& name) const {

@@ -1,5 +1,5 @@
 // The plug-in host: finds shared libraries, checks their ABI version, and
-// keeps the models and passes they register (as copies of their
+// keeps the models, passes and materials they register (as copies of their
 // descriptions, checked against the struct sizes this host needs). Libraries stay loaded as long as
 // the host lives; every world holds the host, so no model outlives its code.
 #pragma once
@@ -20,6 +20,7 @@ struct LoadedLibrary {
     std::string path;
     std::unique_ptr<boost::dll::shared_library> lib;
     std::vector<std::string> models, passes;
+    std::vector<std::string> materials;  // it registers (first, or alike after another library)
 };
 
 class PluginHost {
@@ -36,8 +37,12 @@ public:
     const std::vector<std::string>& search_dirs() const { return dirs_; }
 
     // Resolve a plug-in reference (a name like "linear", or a path to a .so)
-    // to a file; throws PluginError naming what was tried.
+    // to a file; throws PluginError naming what was tried. The name of a
+    // library merged into another resolves to that one (merged_into).
     std::string resolve(const std::string& name_or_path, const std::string& relative_to = "") const;
+    // The library a former library name is now part of ("sph_passes" ->
+    // "sph"), or "" for any other name.
+    static std::string merged_into(const std::string& name);
     // Load a library once (idempotent by canonical path); throws PluginError.
     const LoadedLibrary& load(const std::string& path);
     // Every library file in the search path.
@@ -49,6 +54,10 @@ public:
     std::vector<std::string> pass_names() const;
     const std::string& library_of_model(const std::string& name) const { return model_lib_.at(name); }
     const std::string& library_of_pass(const std::string& name) const { return pass_lib_.at(name); }
+    // A material (abi.h plab_material_desc) by name; nullptr: not registered.
+    // Its library: the first that registered it.
+    const plab_material_desc* material(const std::string& name) const;
+    const std::string& library_of_material(const std::string& name) const { return material_lib_.at(name); }
     // Checkpoint hooks of a pass with private state; nullptr: stateless.
     const plab_pass_state_hooks* pass_state(const std::string& name) const;
     const std::vector<LoadedLibrary>& libraries() const { return libs_; }
@@ -57,6 +66,7 @@ public:
     int register_model(const plab_contact_model_desc* d);
     int register_pass(const plab_pass_desc* d);
     int register_pass_state(const plab_pass_state_hooks* h);
+    int register_material(const plab_material_desc* d);
 
 private:
     std::vector<std::string> dirs_;
@@ -65,7 +75,10 @@ private:
     std::map<std::string, const plab_pass_desc*> passes_;
     std::map<std::string, std::string> model_lib_, pass_lib_;
     std::map<std::string, const plab_pass_state_hooks*> pass_state_;
+    std::map<std::string, const plab_material_desc*> materials_;
+    std::map<std::string, std::string> material_lib_;
     std::string loading_;               // library being initialised
+    std::vector<std::string> loading_materials_;  // the materials it registers
     // the host's copies of the descriptions registered (abi.h: each struct
     // read by its own size), to which models_ and passes_ point
     struct ModelCopy {
@@ -82,6 +95,14 @@ private:
     std::list<ModelCopy> model_copies_;
     std::list<PassCopy> pass_copies_;
     std::list<plab_pass_state_hooks> hook_copies_;
+    struct MaterialCopy {
+        plab_material_desc desc;
+        std::vector<plab_property_desc> properties;
+    };
+    std::list<MaterialCopy> material_copies_;
+    // the problems of a model's or pass's `material` (abi.h): registered,
+    // and each of its properties that the material declares declared alike
+    std::vector<std::string> check_material_use(const char* material, const plab_property_desc* p, uint32_t n) const;
     std::vector<std::string> problems_; // registration problems of `loading_`
 };
 
@@ -91,6 +112,13 @@ private:
 std::vector<std::string> check_properties(const plab_property_desc* p, uint32_t n);
 // Checks a contact model description; returns the problems found.
 std::vector<std::string> check_model_desc(const plab_contact_model_desc& d);
+// The material's description of the property `key`; nullptr when the
+// material (may be nullptr) does not declare it.
+const plab_property_desc* material_property(const plab_material_desc* m, const char* key);
+// How two descriptions of one property differ in what the host checks and
+// the law reads (kind, unit, default, range, flags, mixing, choices; not
+// name or doc), e.g. "default 998 against 1000"; "" when they do not.
+std::string declaration_difference(const plab_property_desc& a, const plab_property_desc& b);
 
 // "[min, max)" style text of a property's valid range; for a bool "true or
 // false", a choice "one of a, b, c", a group "a group name" (", or none").

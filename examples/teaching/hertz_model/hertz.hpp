@@ -22,6 +22,8 @@
 
 namespace tutorial {
 
+struct ElasticSolid;  // the material whose properties a scene may state per group (below)
+
 using plab::Contact;
 using plab::Vec3;
 
@@ -35,6 +37,9 @@ struct Hertz {
         "min of 0.2 x the Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smaller ball and, per ball, "
         "sqrt(m / sum k) with the tangent normal stiffness k = 2 E* sqrt(R* d)";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    // E, nu and fric are the ends' material: a scene material of the rule's
+    // groups gives them (the pair's e is given in the rule)
+    using material = ElasticSolid;
 
     // Step 1: the properties, each with an SI unit and a valid range.
     enum Prop : int { youngs_modulus, poisson_ratio, restitution, fric, prop_count };
@@ -135,6 +140,17 @@ private:
     }
 
     double E_eff_, G_eff_, rayleigh_factor_, beta_, fric_;
+};
+
+// The material (abi.h plab_material_desc): the properties of one group's
+// solid, declared as the model declares them, so that a scene can state them
+// once per group ("materials": {"glass": {"groups": ["beads"], "E": 6.3e10,
+// "nu": 0.22, "fric": 0.4}}) and a rule between two materials mixes them.
+struct ElasticSolid {
+    static constexpr const char* name = "hertz_elastic_solid";
+    static constexpr const char* doc = "an elastic solid for the Hertz contact: Young's modulus, Poisson's ratio, friction";
+    static constexpr plab_property_desc properties[] = {
+        Hertz::properties[Hertz::youngs_modulus], Hertz::properties[Hertz::poisson_ratio], Hertz::properties[Hertz::fric]};
 };
 
 } // namespace tutorial
