@@ -110,10 +110,10 @@ struct Sph {
         "per pair: CFL 0.25 h/(c0 + |v_rel|); laminar viscosity also 0.125 h^2 rho0/mu";
     static constexpr uint32_t range_kind = PLAB_RANGE_DISTANCE;
     // particles interact through their centres: the host skips spin, moments,
-    // stiffness and energies for the ball–ball rows (abi.h, ABI 4)
+    // stiffness and energies for the ball–ball rows (abi.h, PLAB_MODEL_FORCE_AT_CENTRES)
     static constexpr uint32_t flags = PLAB_MODEL_FORCE_AT_CENTRES;
     // reads the two masses (not the effective mass or radius, the radii or
-    // the spin) and writes a step limit (abi.h, ABI 5)
+    // the spin) and writes a step limit (abi.h, io)
     static constexpr uint32_t io = PLAB_IO_MASSES | PLAB_IO_DT_LIMIT;
     // h, the kernel, rho0 and c0 are the fluid's: a scene material of its groups gives them
     using material = plab::sph::FluidMaterial;

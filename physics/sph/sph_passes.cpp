@@ -498,7 +498,7 @@ private:
         double r_of[kBlock], w_of[kBlock];
         for (std::size_t b0 = k0; b0 < k1; b0 += kBlock) {
             const std::size_t n = std::min(kBlock, k1 - b0);
-            const double* r = v.contact_distance ? v.contact_distance + b0 : r_of;  // (ABI 6)
+            const double* r = v.contact_distance ? v.contact_distance + b0 : r_of;  // (plab_pass_view::contact_distance)
             if (!v.contact_distance)
                 for (std::size_t a = 0; a < n; ++a) {  // (a wall row's is not used)
                     const std::size_t k = b0 + a;
@@ -565,8 +565,8 @@ private:
 // XSPH (thesis eq. 18; Monaghan 1989): a particle moves with its velocity
 // smoothed over its neighbours,
 //   dx_i/dt = v_i + ε Σ_j m_j (v_j - v_i) W_ij / ρ̄_ij,   ρ̄_ij = (ρ_i + ρ_j)/2,
-// with v at the half step. The pass runs before the drift (phase PRE_DRIFT,
-// ABI 3) and writes the correction into the host's drift velocity
+// with v at the half step. The pass runs before the drift (phase
+// PLAB_PHASE_PRE_DRIFT) and writes the correction into the host's drift velocity
 // correction fields; the velocity itself (momentum, kinetic energy) is
 // untouched. Fluid–fluid pairs only: boundary balls neither receive nor give
 // a correction, so Σ m_i δv_i = 0 exactly (each pair adds ±ε m_i m_j (v_j -

@@ -53,7 +53,7 @@ std::vector<std::pair<const char*, std::vector<double>*>> ContactSet::double_col
 void ContactSet::release_columns() {
     release(active);
     // a wall set's normal and interior flags say which face of a facet each
-    // row's ball is on: install_pairs() carries them to the new rows
+    // row's ball is on: carry_history() carries them to the new rows
     if (!with_wall) release(interior);
     for (auto& [name, col] : double_columns())
         if (!with_wall || col != &normal) release(*col);

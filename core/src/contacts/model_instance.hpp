@@ -28,7 +28,7 @@ struct ModelInstance {
     int history_slot(const std::string& name) const;
     double property(const std::string& name) const;
     // whether the model reads optional input / writes optional output
-    // `bit` (PLAB_IO_*): all of them unless it declared which (abi.h, ABI 5)
+    // `bit` (PLAB_IO_*): all of them unless it declared which (abi.h, io)
     bool uses(std::uint32_t bit) const { return !(desc->io & PLAB_IO_DECLARED) || (desc->io & bit); }
 };
 

@@ -2,9 +2,9 @@
 // model's own stage is skipped (summation density: docs/sph.md) and its
 // forces come from the packed sweep after those passes. One sweep over the
 // candidates sets the active flags (and gaps) every reader sees, lists the
-// passes' contacts (what build_pass_contacts() would list, in the same
-// order) with their centre distance (the passes' contact_distance, abi.h
-// ABI 6: summation density needs no square root of its own) and, for the
+// passes' contacts (what PassContacts::list_active() would list, in the same
+// order) with their centre distance (the passes' contact_distance, abi.h:
+// summation density needs no square root of its own) and, for the
 // centre-force path, the rows in range of each batch with their centre
 // distance, so that pack_centre_rows() visits only those.
 #include "forces/packed_batch.hpp"

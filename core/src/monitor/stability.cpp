@@ -8,7 +8,7 @@
 //     keeps (Energies::balance), O(1);
 //   * overlap beyond a fraction of the smaller radius — in geometry().
 // Passes report what only they know (SPH density) through the pass view's
-// diagnostic (abi.h, ABI 2; World::run_passes). When a check fires, the run
+// diagnostic (abi.h, plab_pass_view::diagnostic; World::run_passes). When a check fires, the run
 // stops with a Diagnostic; World::step() restores the last good state.
 #include "monitor/stability.hpp"
 

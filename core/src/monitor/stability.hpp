@@ -3,7 +3,7 @@
 // contact, the step and a likely cause — never write garbage. The checks
 // are generic: the core knows states, energies, contact gaps and radii;
 // a pass that knows more (SPH density) reports through the pass view's
-// diagnostic buffer (abi.h, ABI 2).
+// diagnostic buffer (abi.h, plab_pass_view::diagnostic).
 #pragma once
 
 #include "bodies/bodies.hpp"
