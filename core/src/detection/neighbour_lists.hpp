@@ -45,7 +45,8 @@ public:
         std::vector<Vec> position_at_build;
         double wall_motion = 0;
     };
-    Saved saved() const { return {invalidated_, position_at_build_, wall_motion_}; }
+    bool invalidated() const { return invalidated_; }
+    double wall_motion() const { return wall_motion_; }
     void restore(Saved s);
 
 private:

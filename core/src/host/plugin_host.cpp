@@ -453,14 +453,17 @@ int PluginHost::register_model(const plab_contact_model_desc* d) {
     bad = check_model_desc(*d);
     for (const std::string& b : check_material_use(d->material, d->properties, d->property_count)) bad.push_back(b);
     if (!bad.empty()) { problems_.push_back("model '" + name + "': " + join(bad, "; ")); return 1; }
-    if (models_.count(name) || passes_.count(name)) {
-        const std::string other = models_.count(name) ? model_lib_[name] : pass_lib_[name];
-        problems_.push_back("model name '" + name + "' is already registered by " + other);
-        return 1;
-    }
+    if (name_taken(name, "model")) return 1;
     models_[name] = d;
     model_lib_[name] = loading_;
     return 0;
+}
+
+bool PluginHost::name_taken(const std::string& name, const char* kind) {
+    if (!models_.count(name) && !passes_.count(name)) return false;
+    const std::string& other = models_.count(name) ? model_lib_[name] : pass_lib_[name];
+    problems_.push_back(std::string(kind) + " name '" + name + "' is already registered by " + other);
+    return true;
 }
 
 int PluginHost::register_pass(const plab_pass_desc* d) {
@@ -488,11 +491,7 @@ int PluginHost::register_pass(const plab_pass_desc* d) {
     if (d->phase > PLAB_PHASE_PRE_DRIFT) bad.push_back("pass has an unknown phase");
     for (const std::string& b : check_material_use(d->material, d->properties, d->property_count)) bad.push_back(b);
     if (!bad.empty()) { problems_.push_back("pass '" + name + "': " + join(bad, "; ")); return 1; }
-    if (models_.count(name) || passes_.count(name)) {
-        const std::string other = models_.count(name) ? model_lib_[name] : pass_lib_[name];
-        problems_.push_back("pass name '" + name + "' is already registered by " + other);
-        return 1;
-    }
+    if (name_taken(name, "pass")) return 1;
     passes_[name] = d;
     pass_lib_[name] = loading_;
     return 0;

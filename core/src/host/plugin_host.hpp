@@ -69,6 +69,8 @@ public:
     int register_material(const plab_material_desc* d);
 
 private:
+    // A model or pass of that name already registered: a problem noted, true.
+    bool name_taken(const std::string& name, const char* kind);
     std::vector<std::string> dirs_;
     std::vector<LoadedLibrary> libs_;
     std::map<std::string, const plab_contact_model_desc*> models_;

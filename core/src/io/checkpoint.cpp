@@ -490,11 +490,10 @@ void WorldCheckpoint::save_contacts(const World& w, CheckpointWriter& out) {
 
 void WorldCheckpoint::save_detection(const World& w, CheckpointWriter& out) {
     out.section("detection");
-    const NeighbourLists::Saved lists = w.neighbours_.saved();
-    out.u8(lists.invalidated);
+    out.u8(w.neighbours_.invalidated());
     out.u8(w.prepared_);
-    out.vecs(lists.position_at_build);
-    out.f64(lists.wall_motion);
+    out.vecs(w.neighbours_.position_at_build());
+    out.f64(w.neighbours_.wall_motion());
     w.sum_stiffness();
     out.column(w.stiffness_.translational());
     out.column(w.stiffness_.rotational());
