@@ -12,8 +12,8 @@
 // history for every repetition and must give bit-identical outputs (else the
 // comparison is void and the exit status is 1). Repetitions alternate the two
 // paths; the minimum time of each is compared (a loaded machine only adds).
-#include <host/plugin_host.hpp>
-#include <world/world.hpp>
+#include <plab_host/plugins.hpp>
+#include <plab_host/world.hpp>
 
 // The law compiled into this binary: the plug-in's own source. Its two
 // exported entry points are renamed so they cannot clash with the library's.
@@ -35,7 +35,7 @@
 
 namespace {
 
-// Host-owned columns of `rows` contacts, as World::call_model lays them out.
+// Host-owned columns of `rows` contacts, as the kernel's call_model lays them out.
 struct Columns {
     std::size_t rows = 0;
     std::vector<std::int32_t> end1, end2;

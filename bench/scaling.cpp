@@ -21,7 +21,7 @@
 // size per process to read bytes per particle).
 #include "simulation.hpp"
 
-#include <world/world.hpp>
+#include <plab_host/world.hpp>
 
 #include <algorithm>
 #include <array>
@@ -202,15 +202,15 @@ double peak_rss_mb() {
 
 void time_cycle(World& w, Row& row) {
     w.phase_seconds = {};
-    const std::uint64_t rebuilds0 = w.rebuilds();
+    const std::uint64_t rebuilds0 = rebuilds(w);
     const double cpu0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     for (long k = 0; k < row.steps; ++k) w.step();
     row.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     row.cpu_s = cpu_seconds() - cpu0;
     row.phases = w.phase_seconds;
-    row.rebuilds = w.rebuilds() - rebuilds0;
-    row.contacts = double(w.active_contacts());
+    row.rebuilds = rebuilds(w) - rebuilds0;
+    row.contacts = double(active_contacts(w));
     for (const Vec& v : w.bodies.velocity) row.max_speed = std::max(row.max_speed, v.norm());
 }
 

@@ -1,11 +1,12 @@
 // The command sequence (cycle, solve, set, output) and recorded histories.
+#include <plab_host/errors.hpp>
+
 #include "generators.hpp"
 #include "measurements/measurement.hpp"
 #include "metrics.hpp"
 #include "quantities.hpp"
 #include "simulation.hpp"
 #include "variables.hpp"
-#include "common/error.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -100,9 +101,9 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
     if (q == "time") return [](const World& x) { return x.time; };
     if (q == "step") return [](const World& x) { return double(x.step_count); };
     if (q == "dt") return [](const World& x) { return x.last_dt; };
-    if (q == "contacts") return [](const World& x) { return double(x.active_contacts()); };
-    if (q == "unbalanced_ratio") return [](const World& x) { return x.unbalanced_force_ratio(); };
-    if (q == "bonds.intact") return [](const World& x) { return double(x.intact_bonds()); };
+    if (q == "contacts") return [](const World& x) { return double(active_contacts(x)); };
+    if (q == "unbalanced_ratio") return [](const World& x) { return unbalanced_force_ratio(x); };
+    if (q == "bonds.intact") return [](const World& x) { return double(intact_bonds(x)); };
     if (q == "bonds.broken") return [](const World& x) { return double(x.bond_breaks.size()); };
     if (q == "energy.bond_break") return [](const World& x) { return x.energies.bond_break; };
     if (parts[0] == "energy" && parts.size() == 2) {
@@ -501,7 +502,7 @@ void Simulation::cycle(long n) {
     for (; k < n; ++k) {
         one_step();
         if (stop_signal()) {  // the step is complete: stop here, run() writes the checkpoint
-            if (w.contact_forces_current()) break;
+            if (contact_forces_current(w)) break;
             ++k;  // (the signal came after the step asked): one more, which writes them
             one_step();
             break;
@@ -587,9 +588,9 @@ bool Simulation::run_command(const Command& c) {
         for (;;) {
             const long d = done();
             if (d % 10 == 0) {  // the ratio is checked every 10 cycles
-                if (w.unbalanced_force_ratio() <= c.value) return true;
+                if (unbalanced_force_ratio(w) <= c.value) return true;
                 if (d >= c.max_cycles)
-                    throw RunError(c.path + ": ratio " + short_number(w.unbalanced_force_ratio()) + " still above " +
+                    throw RunError(c.path + ": ratio " + short_number(unbalanced_force_ratio(w)) + " still above " +
                                    short_number(c.value) + " after " + std::to_string(d) +
                                    " cycles (max_cycles); add local or viscous damping, or raise max_cycles");
             }
@@ -617,7 +618,7 @@ Simulation::PlannedStep Simulation::planned_timestep() {
     World& w = *world_;
     if (w.fixed_dt > 0) return {w.fixed_dt, "scene.timestep.fixed"};
     if (resumed_ && w.last_dt > 0) return {w.last_dt, "the last step before the checkpoint"};
-    const StableStep s = w.nominal_timestep();
+    const StableStep s = nominal_timestep(w);
     return {w.safety_factor * s.critical,
             "scene.timestep.safety_factor " + short_number(w.safety_factor) + " x the stable step, limited by " + s.limited_by};
 }
@@ -668,7 +669,7 @@ void Simulation::run() {
     check_run_length();
     if (!quiet_ && !resumed_) {
         w.prepare();
-        const StableStep s = w.stable_timestep();
+        const StableStep s = stable_timestep(w);
         if (w.fixed_dt > 0) spdlog::info("timestep fixed at {:g} s; stable limit {:g} s ({})", w.fixed_dt, s.critical, s.limited_by);
         else spdlog::info("timestep automatic: {:g} x critical {:g} s ({})", w.safety_factor, s.critical, s.limited_by);
     }

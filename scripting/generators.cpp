@@ -1,6 +1,6 @@
 #include "generators.hpp"
 
-#include <host/plugin_host.hpp>
+#include <plab_host/plugins.hpp>
 
 #include <cmath>
 #include <sstream>

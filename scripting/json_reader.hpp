@@ -3,8 +3,8 @@
 // object read through it rejects keys it does not know.
 #pragma once
 
-#include <common/error.hpp>
-#include <common/types.hpp>
+#include <plab_host/errors.hpp>
+#include <plab_host/types.hpp>
 
 #include <nlohmann/json.hpp>
 

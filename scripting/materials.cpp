@@ -5,7 +5,7 @@
 
 #include "generators.hpp"
 
-#include <host/plugin_host.hpp>
+#include <plab_host/plugins.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -39,7 +39,7 @@
 #include "json_reader.hpp"
 
 #include <plab/abi.h>
-#include <world/world.hpp>
+#include <plab_host/world.hpp>
 
 #include <string>
 #include <vector>

@@ -2,7 +2,7 @@
 // testing against an analytical result (contact time pi sqrt(m/k)).
 #include "new_model.hpp"
 
-#include <common/error.hpp>
+#include <plab_host/errors.hpp>
 
 #include <cctype>
 #include <filesystem>

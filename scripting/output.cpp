@@ -69,22 +69,22 @@ std::string bond_breaks_csv(const World& w) {
 // What makes a model expensive (issue 7): its contacts, the neighbours per
 // body, and the stable step its contacts allow on their own (one contact:
 // sqrt(m/k) of the lighter end, or the model's direct step limit).
-json cost_drivers(const ModelInstance& inst, const Bodies& B) {
+json cost_drivers(const ModelView& inst, const Bodies& B) {
     const std::size_t bodies = B.size();
     std::size_t active = 0, ball_active = 0;
     double stable = kInf;
-    for (const ContactSet* s : {&inst.balls, &inst.walls})
-        for (std::size_t k = 0; k < s->size(); ++k) {
-            if (!s->active[k]) continue;
+    for (const ContactTable& s : {inst.balls(), inst.walls()})
+        for (std::size_t k = 0; k < s.size(); ++k) {
+            if (!s.active(k)) continue;
             ++active;
-            ball_active += !s->with_wall;
-            // masses from the bodies: a packed set keeps no mass columns (a wall's is infinite)
-            const double m = s->with_wall ? B.mass[s->end1[k]] : std::min(B.mass[s->end1[k]], B.mass[s->end2[k]]);
-            if (s->k_t_at(k) > 0) stable = std::min(stable, std::sqrt(m / s->k_t_at(k)));
-            stable = std::min(stable, s->dt_limit_at(k));
+            ball_active += !s.with_wall();
+            // a wall's mass is infinite
+            const double m = s.with_wall() ? B.mass[s.end1(k)] : std::min(B.mass[s.end1(k)], B.mass[s.end2(k)]);
+            if (s.stiffness(k) > 0) stable = std::min(stable, std::sqrt(m / s.stiffness(k)));
+            stable = std::min(stable, s.dt_limit(k));
         }
-    json j = {{"model", inst.model},
-              {"candidate_pairs", inst.balls.size() + inst.walls.size()},
+    json j = {{"model", inst.model()},
+              {"candidate_pairs", inst.balls().size() + inst.walls().size()},
               {"active_contacts", active},
               {"neighbours_per_body", bodies ? 2.0 * double(ball_active) / double(bodies) : 0.0}};
     if (stable < kInf) j["stable_dt"] = stable;
@@ -128,9 +128,9 @@ json Simulation::summary() const {
     s["wall_seconds"] = run_.wall_seconds;
     s["cpu_seconds"] = run_.cpu_seconds;
     s["particle_steps_per_second"] = run_.particle_steps_per_second;
-    s["contacts"] = w.active_contacts();
-    s["neighbour_rebuilds"] = w.rebuilds();
-    const StableStep st = const_cast<World&>(w).stable_timestep();
+    s["contacts"] = active_contacts(w);
+    s["neighbour_rebuilds"] = rebuilds(w);
+    const StableStep st = stable_timestep(w);
     s["timestep"] = {{"mode", w.fixed_dt > 0 ? "fixed" : "automatic"},
                      {"last_dt", w.last_dt},
                      {"critical", st.critical},
@@ -143,12 +143,12 @@ json Simulation::summary() const {
     s["energies"] = {{"kinetic", e.kinetic}, {"strain", e.strain}, {"body_work", e.body},
                      {"boundary_work", e.boundary}, {"slip", e.slip}, {"dashpot", e.dashpot},
                      {"local_damping", e.local_damping}, {"bond_break", e.bond_break}, {"balance", e.balance()}};
-    s["bonds"] = {{"intact", w.intact_bonds()}, {"broken", w.bond_breaks.size()}};
+    s["bonds"] = {{"intact", intact_bonds(w)}, {"broken", w.bond_breaks.size()}};
     json phases;
     for (int p = 0; p < ph_count; ++p) phases[phase_names[p]] = w.phase_seconds[p];
     s["phase_seconds"] = phases;
     json models = json::array();
-    for (const auto& inst : w.instances()) models.push_back(cost_drivers(*inst, w.bodies));
+    for (std::size_t m = 0; m < w.model_count(); ++m) models.push_back(cost_drivers(w.model(m), w.bodies));
     s["models"] = models;
     if (!w.stopped.quantity.empty()) {
         const Diagnostic& d = w.stopped;
@@ -163,7 +163,7 @@ json Simulation::summary() const {
         s["history_units"] = units;
     }
     std::ostringstream hash;
-    hash << std::hex << w.state_hash();
+    hash << std::hex << state_hash(w);
     s["state_hash"] = hash.str();
     return s;
 }
@@ -194,7 +194,7 @@ bool Simulation::history_flush_due() const {
 // when it ends (history.csv: flush_history()).
 void Simulation::write_outputs() const {
     const fs::path dir(out_dir_);
-    if (!world_->bond_breaks.empty() || world_->intact_bonds() > 0)
+    if (!world_->bond_breaks.empty() || intact_bonds(*world_) > 0)
         write_atomically(dir / "bond_breaks.csv", bond_breaks_csv(*world_));
     write_atomically(dir / "summary.json", summary().dump(2) + "\n");
 }

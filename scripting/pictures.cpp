@@ -3,7 +3,7 @@
 // true size; text and legend are drawn in pixels on top.
 #include "pictures.hpp"
 
-#include <common/error.hpp>
+#include <plab_host/errors.hpp>
 
 #include <cairo.h>
 
@@ -108,7 +108,7 @@ std::vector<std::string> snapshot_field_names(const World& w) {
     std::vector<std::string> names = {"velocity", "force", "group", "id", "stress_xx", "stress_yy", "stress_xy",
                                       "mean_stress", "broken_bonds"};
     for (std::size_t f = 0; f < w.fields.names().size(); ++f)
-        if (w.field_computed(int(f))) names.push_back(w.fields.names()[f]);
+        if (field_computed(w, int(f))) names.push_back(w.fields.names()[f]);
     return names;
 }
 
@@ -123,7 +123,7 @@ std::vector<double> snapshot_values(const World& w, const std::string& field, st
         for (std::size_t i = 0; i < b.size(); ++i) v[i] = field == "group" ? b.group[i] : double(b.id[i]);
     } else if (field.rfind("stress_", 0) == 0 || field == "mean_stress") {
         unit = "Pa";  // per-ball average stress, tension positive
-        const auto sigma = w.ball_stress();
+        const auto sigma = ball_stress(w);
         for (std::size_t i = 0; i < b.size(); ++i)
             v[i] = field == "stress_xx" ? sigma[i](0, 0) : field == "stress_yy" ? sigma[i](1, 1)
                  : field == "stress_xy" ? sigma[i](0, 1) : 0.5 * (sigma[i](0, 0) + sigma[i](1, 1));
@@ -144,7 +144,7 @@ std::vector<double> snapshot_values(const World& w, const std::string& field, st
             throw InputError("field", "unknown field '" + field + "' to colour balls by; fields: " + known);
         }
         unit = w.fields.unit(f) == "1" ? "" : w.fields.unit(f);  // "1": dimensionless
-        v = const_cast<World&>(w).fields.column(f);
+        v = w.fields.column(f);
     }
     return v;
 }
@@ -166,12 +166,10 @@ void capture_bonds(const World& w, SnapshotFrame& f) {
     auto segment = [](std::vector<float>& out, const Vec& p, const Vec& q) {
         out.insert(out.end(), {float(p.x()), float(p.y()), float(q.x()), float(q.y())});
     };
-    for (const auto& inst : w.instances()) {
-        const int slot = inst->desc->persist_slot;
-        if (slot < 0) continue;
-        const ContactSet& s = inst->balls;
+    for (std::size_t m = 0; m < w.model_count(); ++m) {
+        const ContactTable s = w.model(m).balls();
         for (std::size_t k = 0; k < s.size(); ++k)
-            if (s.history[k * inst->stride + slot] > 0) segment(f.bonds, b.position[s.end1[k]], b.position[s.end2[k]]);
+            if (s.bonded(k)) segment(f.bonds, b.position[s.end1(k)], b.position[s.end2(k)]);
     }
     std::unordered_map<BodyId, std::size_t> index;
     for (std::size_t i = 0; i < b.size(); ++i) index[b.id[i]] = i;

@@ -6,7 +6,7 @@
 
 #include "plot.hpp"
 
-#include <world/world.hpp>
+#include <plab_host/world.hpp>
 
 #include <cstdint>
 #include <string>

@@ -6,8 +6,8 @@
 #include "sweep.hpp"
 #include "validation.hpp"
 
-#include <io/checkpoint.hpp>
-#include <host/plugin_host.hpp>
+#include <plab_host/checkpoint.hpp>
+#include <plab_host/plugins.hpp>
 
 #include <spdlog/spdlog.h>
 

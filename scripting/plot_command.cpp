@@ -8,7 +8,7 @@
 
 #include "plot.hpp"
 
-#include <common/error.hpp>
+#include <plab_host/errors.hpp>
 
 #include <nlohmann/json.hpp>
 

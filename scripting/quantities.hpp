@@ -3,7 +3,7 @@
 // their unit into summary.json, and `plab plot` labels its axes with it.
 #pragma once
 
-#include <world/world.hpp>
+#include <plab_host/world.hpp>
 
 #include <string>
 #include <vector>

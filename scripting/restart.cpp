@@ -6,7 +6,7 @@
 // stored scene with any --set applied, then replaces the state by the file's.
 #include "simulation.hpp"
 
-#include <io/checkpoint.hpp>
+#include <plab_host/checkpoint.hpp>
 
 #include <csignal>
 #include <filesystem>
@@ -185,7 +185,7 @@ void Simulation::save_checkpoint(const std::string& path) const { write_checkpoi
 void Simulation::write_checkpoint(const std::string& path, const std::string& run_state) const {
     CheckpointWriter out = CheckpointWriter::to_file(path);
     write_plugins_and_scene(out);
-    WorldCheckpoint::save(*world_, out);
+    save_world(*world_, out);
     out.append(run_state);
     out.commit();
 }
@@ -210,7 +210,7 @@ void Simulation::keep_last_good() {
 }
 
 std::string Simulation::write_last_good() const {
-    if (!world_->at_last_good() || last_good_run_state_.empty()) return "";
+    if (!at_last_good(*world_) || last_good_run_state_.empty()) return "";
     write_checkpoint(last_good_path(), last_good_run_state_);
     return last_good_path();
 }
@@ -289,7 +289,7 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& path, const s
     if (!sets_output_dir(sets, scene)) sim->out_dir_ = out_dir;
     const Vec gravity = sim->world().gravity;  // the scene's, with any --set
 
-    WorldCheckpoint::load(sim->world(), in);
+    load_world(sim->world(), in);
     if (sets_gravity(sets)) {  // from this step on, as a set command would
         sim->world().gravity = gravity;
         sim->world().mark_dirty();

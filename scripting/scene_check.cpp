@@ -52,11 +52,12 @@ void print_contact_models(std::ostream& out, const World& w) {
         for (std::size_t b = a; b < n; ++b) {
             const int k = w.assigned(int(a), int(b));
             if (k < 0 || !(has_balls[a] || has_balls[b])) continue;  // (walls never touch walls)
-            const ModelInstance& m = *w.instances()[std::size_t(k)];
-            out << "  " << w.group_names()[a] << " - " << w.group_names()[b] << ": " << m.model;
-            for (std::size_t p = 0; p < m.props.size(); ++p)
-                out << (p ? ", " : " (") << m.desc->properties[p].key << " "
-                    << property_value_text(m.desc->properties[p], m.props[p], w.group_names()) << (p + 1 == m.props.size() ? ")" : "");
+            const ModelView m = w.model(std::size_t(k));
+            const std::vector<double>& props = m.properties();
+            out << "  " << w.group_names()[a] << " - " << w.group_names()[b] << ": " << m.model();
+            for (std::size_t p = 0; p < props.size(); ++p)
+                out << (p ? ", " : " (") << m.desc().properties[p].key << " "
+                    << property_value_text(m.desc().properties[p], props[p], w.group_names()) << (p + 1 == props.size() ? ")" : "");
             out << "\n";
         }
 }

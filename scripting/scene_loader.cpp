@@ -233,7 +233,7 @@ void Simulation::load_contact_models(const Node& n) {
         if (rule.has("max_overlap")) {
             if (instance < 0) rule.at("max_overlap").fail("the null model makes no contact to limit");
             // fraction of the smaller radius beyond which the detector stops the run
-            w.instances()[std::size_t(instance)]->max_overlap = rule.at("max_overlap").number(0.0, kInf, true, true);
+            w.set_max_overlap(std::size_t(instance), rule.at("max_overlap").number(0.0, kInf, true, true));
         }
         for (int a : sides[0])
             for (int b : sides[1]) w.assign(a, b, instance);
@@ -356,7 +356,7 @@ void Simulation::load_timestep(const Node& n) {
     w.safety_factor = n.number_or("safety_factor", 0.8, 0.0, 1.0, true, false);
     StableStep s;
     try {
-        s = w.nominal_timestep();  // also refuses a model that reports no stable step
+        s = nominal_timestep(w);  // also refuses a model that reports no stable step
     } catch (const PluginError& e) {
         throw InputError("scene.contact_models", e.what());
     }

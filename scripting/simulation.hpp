@@ -8,7 +8,7 @@
 #include "progress.hpp"
 #include "vtk_output.hpp"
 
-#include <world/world.hpp>
+#include <plab_host/world.hpp>
 
 #include <chrono>
 #include <ctime>

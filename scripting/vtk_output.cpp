@@ -173,10 +173,10 @@ std::string balls_vtp(const World& w, const VtkOptions& opt) {
     v.add_real("angular_velocity", 3, flatten(b.angular_velocity));
     v.add_real("force", 3, flatten(b.force));
     for (std::size_t f = 0; f < w.fields.names().size(); ++f)
-        if (w.field_computed(int(f))) v.add_real(w.fields.names()[f], 1, const_cast<World&>(w).fields.column(int(f)));
+        if (field_computed(w, int(f))) v.add_real(w.fields.names()[f], 1, w.fields.column(int(f)));
     std::vector<double> stress;  // per-ball average stress, tension positive (row-major 3x3)
     stress.reserve(9 * b.size());
-    for (const auto& sigma : w.ball_stress())
+    for (const auto& sigma : ball_stress(w))
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c) stress.push_back(sigma(r, c));
     v.add_real("stress", 9, stress);
@@ -190,23 +190,21 @@ std::string contacts_vtp(const World& w, const VtkOptions& opt) {
     v.lines(true);
     std::vector<double> points, force, normal_force;
     std::vector<std::int32_t> bonded, model;
-    for (std::size_t m = 0; m < w.instances().size(); ++m) {
-        const auto& inst = w.instances()[m];
-        const ContactSet& s = inst->balls;
-        const int bond_slot = inst->desc->persist_slot;
-        const bool at_distance = inst->desc->range_kind == PLAB_RANGE_DISTANCE;
+    for (std::size_t m = 0; m < w.model_count(); ++m) {
+        const ContactTable s = w.model(m).balls();
+        const bool at_distance = w.model(m).desc().range_kind == PLAB_RANGE_DISTANCE;
         if (at_distance && !opt.pair_contacts) continue;
         for (std::size_t k = 0; k < s.size(); ++k) {
-            if (!s.active[k]) continue;
-            const bool is_bond = bond_slot >= 0 && s.history[k * inst->stride + bond_slot] > 0;
+            if (!s.active(k)) continue;
+            const bool is_bond = s.bonded(k);
             if (!at_distance && !(is_bond ? opt.bonds : opt.contacts)) continue;
             bonded.push_back(is_bond);
             model.push_back(std::int32_t(m));
-            for (int e : {s.end1[k], s.end2[k]}) {
+            for (std::size_t e : {s.end1(k), s.end2(k)}) {
                 const Vec& p = w.bodies.position[e];
                 points.insert(points.end(), {p.x(), p.y(), p.z()});
             }
-            const Vec f(&s.force[3 * k]), n = w.contact_normal(s, k);
+            const Vec f = s.force(k), n = s.normal(k);
             force.insert(force.end(), {f.x(), f.y(), f.z()});
             normal_force.push_back(f.dot(n));
         }
@@ -218,7 +216,7 @@ std::string contacts_vtp(const World& w, const VtkOptions& opt) {
     v.add_int("bonded", bonded);
     v.add_int("model", model);
     std::vector<std::string> models;
-    for (const auto& inst : w.instances()) models.push_back(inst->model);
+    for (std::size_t m = 0; m < w.model_count(); ++m) models.push_back(w.model(m).model());
     v.add_names("model_names", models);
     return v.finish(points.size() / 3);
 }

@@ -5,7 +5,7 @@
 
 #include "json_reader.hpp"
 
-#include <world/world.hpp>
+#include <plab_host/world.hpp>
 
 #include <string>
 

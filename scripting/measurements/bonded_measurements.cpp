@@ -68,7 +68,7 @@ Measurement clamp_line(const Node& with, const World& w) {
 // (x_load − x), I = height³/12 per unit thickness, y from the mid-height:
 // RMS of the difference over the RMS of −M y / I. Rows and x are the balls'
 // positions at the start (the beam deflects); x_load is the loaded ball's
-// (load_id) position now. The ball stress (World::ball_stress, over the
+// (load_id) position now. The ball stress (ball_stress() of plab_host/world.hpp, over the
 // ball's own area) times area_ratio is the stress of the continuum, whose
 // area per ball differs: a hexagonal lattice gives each ball the cell
 // 2√3 R², so π/(2√3).
@@ -99,7 +99,7 @@ Measurement fibre_stress_error(const Node& with, const World& w) {
     }
     if (fibres->empty()) with.at("x_from").fail("no ball of the top or bottom row lies in [x_from, x_to]");
     return [=](const World& x) {
-        const auto sigma = x.ball_stress();
+        const auto sigma = ball_stress(x);
         const double x_load = x.bodies.position[loaded].x();
         double diff2 = 0, ref2 = 0;
         for (const Fibre& f : *fibres) {
@@ -112,11 +112,11 @@ Measurement fibre_stress_error(const Node& with, const World& w) {
 }
 
 // The model instance with bonds (a bond_state history slot: linear_pbond).
-const ModelInstance& bonded_instance(const Node& where, const World& w) {
-    for (const auto& inst : w.instances()) {
+std::size_t bonded_instance(const Node& where, const World& w) {
+    for (std::size_t m = 0; m < w.model_count(); ++m) {
         try {
-            inst->history_slot("bond_state");
-            return *inst;
+            w.model(m).history_slot("bond_state");
+            return m;
         } catch (const std::out_of_range&) {
         }
     }
@@ -143,24 +143,23 @@ Measurement linear_first_break(const Node& with, const World& w) {
         with.has("criterion") ? with.at("criterion").choice({"tension_or_shear", "tension", "shear", "tension_at_centre"})
                               : "tension_or_shear";
     const std::string give = with.has("give") ? with.at("give").choice({"load", "x", "y", "in_tension"}) : "load";
-    const ModelInstance& inst = bonded_instance(with, w);
+    const std::size_t bonded = bonded_instance(with, w);
+    const ModelView inst = w.model(bonded);
     const int state = inst.history_slot("bond_state"), fn = inst.history_slot("bond_normal_force");
     const int fs = inst.history_slot("bond_shear_force_x"), mz = inst.history_slot("bond_moment_z");
     const double sigma_c = with.number_or("tensile_strength", inst.property("pb_ten"), 0.0, kInf, true, false);
     const double tau_c = inst.property("pb_coh");
     const double rmul = inst.property("pb_rmul"), beta = criterion == "tension_at_centre" ? 0.0 : inst.property("pb_mcf");
     const bool tension = criterion != "shear", shear = criterion == "tension_or_shear" || criterion == "shear";
-    const ModelInstance* bonded = &inst;
     return [=](const World& x) {
-        const ModelInstance& in = *bonded;
-        const ContactSet& s = in.balls;
+        const ContactTable s = x.model(bonded).balls();
         double worst = 0;  // the largest use of its strength, σ/σc or τ/τc
         std::size_t first = 0;
         bool first_in_tension = false;
         for (std::size_t k = 0; k < s.size(); ++k) {
-            const double* h = &s.history[k * std::size_t(in.stride)];
+            const double* h = s.history(k);
             if (h[state] <= 0) continue;
-            const double r_bar = std::min(x.end_radius(s, k, false), x.end_radius(s, k, true)) * rmul;
+            const double r_bar = std::min(s.end_radius(k, false), s.end_radius(k, true)) * rmul;
             const double area = 2 * r_bar, inertia = 2 * r_bar * r_bar * r_bar / 3;
             const double sigma = h[fn] / area + beta * std::fabs(h[mz]) * r_bar / inertia;  // eq. 49
             const double tau = std::hypot(h[fs], h[fs + 1]) / area;                          // eq. 50
@@ -174,7 +173,7 @@ Measurement linear_first_break(const Node& with, const World& w) {
         if (worst <= 0) return std::nan("");  // no bond is loaded (yet)
         if (give == "load") return load / worst;
         if (give == "in_tension") return first_in_tension ? 1.0 : 0.0;
-        const Vec point = x.contact_point(s, first);
+        const Vec point = s.point(first);
         return give == "x" ? point.x() : point.y();
     };
 }

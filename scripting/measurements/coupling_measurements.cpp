@@ -82,12 +82,10 @@ Pieces pieces_of(const World& w, int group, const std::vector<std::pair<std::siz
         return i;
     };
     const auto join = [&](std::size_t i, std::size_t j) { parent[root(i)] = root(j); };
-    for (const auto& inst : w.instances()) {
-        const int slot = inst->desc->persist_slot;
-        if (slot < 0) continue;
-        const ContactSet& c = inst->balls;
+    for (std::size_t m = 0; m < w.model_count(); ++m) {
+        const ContactTable c = w.model(m).balls();
         for (std::size_t k = 0; k < c.size(); ++k)
-            if (c.history[k * std::size_t(inst->stride) + std::size_t(slot)] > 0) join(std::size_t(c.end1[k]), std::size_t(c.end2[k]));
+            if (c.bonded(k)) join(c.end1(k), c.end2(k));
     }
     for (const auto& [i, j] : extra)
         if (i < parent.size() && j < parent.size()) join(i, j);

@@ -3,8 +3,8 @@
 // outside the activity range, opposite force when the ends swap,
 // objectivity under rotation, the same result for batch size 1 and N, no
 // NaN at extreme inputs, and a positive stable timestep.
-#include <host/plugin_host.hpp>
-#include <common/types.hpp>
+#include <plab_host/plugins.hpp>
+#include <plab_host/types.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -22,13 +22,13 @@ std::uint64_t bits(double v) {
 // (the two worlds hold the same rows: the same scene, the same steps).
 std::size_t forces_differing(const World& a, const World& b) {
     std::size_t differ = 0;
-    for (std::size_t m = 0; m < a.instances().size(); ++m) {
-        const ContactSet &sa = a.instances()[m]->balls, &sb = b.instances()[m]->balls;
+    for (std::size_t m = 0; m < a.model_count(); ++m) {
+        const ContactTable sa = a.model(m).balls(), sb = b.model(m).balls();
         REQUIRE(sa.size() == sb.size());
         for (std::size_t k = 0; k < sa.size(); ++k) {
-            REQUIRE(sa.active[k] == sb.active[k]);
-            if (!sa.active[k]) continue;
-            for (int c = 0; c < 3; ++c) differ += bits(sa.force[3 * k + c]) != bits(sb.force[3 * k + c]);
+            REQUIRE(sa.active(k) == sb.active(k));
+            if (!sa.active(k)) continue;
+            for (int c = 0; c < 3; ++c) differ += bits(sa.force(k)[c]) != bits(sb.force(k)[c]);
         }
     }
     return differ;
@@ -44,15 +44,15 @@ TEST_CASE("contact forces written only on the steps that read them are those of 
     for (int s = 0; s < 3000; ++s) {
         a.step();
         b.step();
-        REQUIRE(a.state_hash() == b.state_hash());
-        REQUIRE(a.contact_forces_current());
+        REQUIRE(state_hash(a) == state_hash(b));
+        REQUIRE(contact_forces_current(a));
         if (b.step_count % 50 == 0) {
-            REQUIRE(b.contact_forces_current());
+            REQUIRE(contact_forces_current(b));
             REQUIRE(forces_differing(a, b) == 0);
-            for (const auto& inst : a.instances())
-                for (std::size_t k = 0; k < inst->balls.size(); ++k) in_contact += inst->balls.active[k];
+            for (std::size_t m = 0; m < a.model_count(); ++m)
+                for (std::size_t k = 0; k < a.model(m).balls().size(); ++k) in_contact += a.model(m).balls().active(k);
         } else {
-            REQUIRE(!b.contact_forces_current());
+            REQUIRE(!contact_forces_current(b));
             stale_rows += forces_differing(a, b);
         }
     }
@@ -70,16 +70,16 @@ TEST_CASE("a run's history rows read the contact forces of their own step", "[de
     // the same scene stepped by hand, which writes every step's forces
     Simulation by_hand(settling_scene(3, 600));
     World& w = by_hand.world();
-    std::vector<double> expected{(w.prepare(), w.unbalanced_force_ratio())};
+    std::vector<double> expected{(w.prepare(), unbalanced_force_ratio(w))};
     for (int s = 0; s < 3000; ++s) {
         w.step();
-        if (w.step_count % 70 == 0) expected.push_back(w.unbalanced_force_ratio());
+        if (w.step_count % 70 == 0) expected.push_back(unbalanced_force_ratio(w));
     }
     REQUIRE(ratio.size() == expected.size());
     for (std::size_t r = 0; r < ratio.size(); ++r) {
         INFO("row " << r);
         CHECK(bits(ratio[r]) == bits(expected[r]));
     }
-    CHECK(run.world().contact_forces_current());  // after the cycle's last step
+    CHECK(contact_forces_current(run.world()));  // after the cycle's last step
     CHECK(forces_differing(run.world(), w) == 0);
 }

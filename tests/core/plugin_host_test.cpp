@@ -3,8 +3,8 @@
 #include "simulation.hpp"
 #include "settling_scene.hpp"
 
-#include <common/error.hpp>
-#include <host/plugin_host.hpp>
+#include <plab_host/errors.hpp>
+#include <plab_host/plugins.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -184,7 +184,7 @@ TEST_CASE("linear with its io declaration gives bit for bit the state of the sam
         sim.set_quiet(true);
         sim.cycle(1500);
         const auto& e = sim.world().energies;
-        return std::make_tuple(sim.world().state_hash(), e.kinetic, e.dashpot, e.slip, sim.world().stable_timestep().critical);
+        return std::make_tuple(state_hash(sim.world()), e.kinetic, e.dashpot, e.slip, stable_timestep(sim.world()).critical);
     };
     for (int dim : {2, 3}) {
         INFO("dim " << dim);

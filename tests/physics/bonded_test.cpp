@@ -99,14 +99,14 @@ std::pair<double, double> strength_use_under_strain(const json& extra, double ex
     w.prepare();
     w.step();
     CHECK(w.bond_breaks.empty());
-    const ModelInstance& inst = *w.instances()[0];
+    const ModelView inst = w.model(0);
     const int fn = inst.history_slot("bond_normal_force"), fsx = inst.history_slot("bond_shear_force_x"),
               fsy = inst.history_slot("bond_shear_force_y");
     const double ten = inst.property("pb_ten"), coh = inst.property("pb_coh");
     double sigma = 0, tau = 0;
-    const ContactSet& s = inst.balls;
+    const ContactTable s = inst.balls();
     for (std::size_t k = 0; k < s.size(); ++k) {
-        const double* h = &s.history[k * inst.stride];
+        const double* h = s.history(k);
         sigma = std::max(sigma, h[fn] / (2 * r) / ten);
         tau = std::max(tau, std::hypot(h[fsx], h[fsy]) / (2 * r) / coh);
     }

@@ -315,16 +315,17 @@ struct BondStress {
 
 BondStress bond_stress(const World& w) {
     BondStress b;
-    for (const auto& inst : w.instances()) {
-        if (inst->model != "linear_pbond") continue;
-        const double rmul = inst->property("pb_rmul");
-        const int fn_slot = inst->history_slot("bond_normal_force"), fs_slot = inst->history_slot("bond_shear_force_x"),
-                  m_slot = inst->history_slot("bond_moment_x");
-        const ContactSet& c = inst->balls;
+    for (std::size_t m = 0; m < w.model_count(); ++m) {
+        const ModelView inst = w.model(m);
+        if (inst.model() != "linear_pbond") continue;
+        const double rmul = inst.property("pb_rmul");
+        const int fn_slot = inst.history_slot("bond_normal_force"), fs_slot = inst.history_slot("bond_shear_force_x"),
+                  m_slot = inst.history_slot("bond_moment_x");
+        const ContactTable c = inst.balls();
         for (std::size_t k = 0; k < c.size(); ++k) {
-            const double* h = &c.history[k * std::size_t(inst->stride)];
-            if (h[inst->desc->persist_slot] <= 0) continue;
-            const std::size_t i = std::size_t(c.end1[k]), j = std::size_t(c.end2[k]);
+            const double* h = c.history(k);
+            if (!c.bonded(k)) continue;
+            const std::size_t i = c.end1(k), j = c.end2(k);
             const double r = rmul * std::min(w.bodies.radius[i], w.bodies.radius[j]);
             const double area = 2 * r, inertia = 2 * r * r * r / 3;  // 2D, unit thickness (eq. 39)
             const double axial = h[fn_slot] / area;
@@ -394,7 +395,7 @@ TEST_CASE("fpsi study: bond stresses and the first break", "[.fpsi_study]") {
         const BondBreak first = broken ? w.bond_breaks.front() : BondBreak{};
         std::printf("dp %.4f R %.6f strength %.3g mode %d mcf %.2f: %zu of %zu broken, first at %.4f s (%.4f, %.4f) %s; "
                     "in pieces from %.4f s; %.0f pieces (largest %.0f); %llu steps\n",
-                    v[0], v[1], v[3], int(v[4]), v[5], broken, broken + w.intact_bonds(), broken ? first.time : -1.0,
+                    v[0], v[1], v[3], int(v[4]), v[5], broken, broken + intact_bonds(w), broken ? first.time : -1.0,
                     first.point.x(), first.point.y(), first.mode == PLAB_BREAK_SHEAR ? "shear" : "tension", fell_apart(w),
                     pieces(w), largest(w), static_cast<unsigned long long>(w.step_count));
         std::printf("  t (s)   max Fn/A (kPa)  max sigma b=1 (kPa) at (x, y)   max tau (kPa)  tip dx (mm)  broken  pieces (largest)\n");

@@ -56,8 +56,8 @@ Outcome run(const json& scene, int threads) {
     World& w = sim.world();
     double rate = 0;
     for (double r : w.fields.column(w.fields.index("sph_drho_dt"))) rate = std::max(rate, std::fabs(r));
-    return {w.state_hash(), rate, w.field_computed(w.fields.index("sph_drho_dt")), w.active_contacts(),
-            w.ball_stress(), w.rebuilds()};
+    return {state_hash(w), rate, field_computed(w, w.fields.index("sph_drho_dt")), active_contacts(w),
+            ball_stress(w), rebuilds(w)};
 }
 
 } // namespace
@@ -93,13 +93,13 @@ TEST_CASE("a pass that needs the rates stage, added mid-run, unpacks the SPH set
     sim.set_quiet(true);
     sim.cycle(75);
     World& w = sim.world();
-    REQUIRE(w.field_computed(w.fields.index("sph_drho_dt")) == false);
+    REQUIRE(field_computed(w, w.fields.index("sph_drho_dt")) == false);
     // sph_density_integration reads sph_drho_dt: from now on the rates stage
     // runs over full columns, which the packed set must get back
     w.add_pass("sph_density_integration", {1.0});
     sim.cycle(75);
-    CHECK(w.field_computed(w.fields.index("sph_drho_dt")));
-    CHECK(w.state_hash() == straight);  // the summation pass overwrites the integrated density
+    CHECK(field_computed(w, w.fields.index("sph_drho_dt")));
+    CHECK(state_hash(w) == straight);  // the summation pass overwrites the integrated density
 }
 
 TEST_CASE("an SPH double dam break gives bit-identical states with 1 and 2 threads", "[sph][determinism]") {
@@ -131,11 +131,11 @@ TEST_CASE("centre forces between balls with every DOF fixed are not computed, an
         sim.set_quiet(true);
         sim.cycle(150);
         const World& w = sim.world();
-        const ContactSet& bb = w.instances()[2]->balls;  // boundary–boundary (the scene's third rule)
-        Run r{w.state_hash(), 0, 0};
+        const ContactTable bb = w.model(2).balls();  // boundary–boundary (the scene's third rule)
+        Run r{state_hash(w), 0, 0};
         for (std::size_t k = 0; k < bb.size(); ++k) {
-            r.in_range += bb.active[k] != 0;
-            r.with_force += bb.active[k] && Vec(&bb.force[3 * k]).squaredNorm() > 0;
+            r.in_range += bb.active(k);
+            r.with_force += bb.active(k) && bb.force(k).squaredNorm() > 0;
         }
         return r;
     };

@@ -7,7 +7,7 @@
 #include "simulation.hpp"
 #include "../core/settling_scene.hpp"
 
-#include <io/checkpoint.hpp>
+#include <plab_host/checkpoint.hpp>
 
 #include "../support/file_bytes.hpp"
 
@@ -110,9 +110,9 @@ Restarted restart_and_finish(const fs::path& file, std::uint64_t reference, std:
         sim->set_output_dir("");  // write nothing
         Watchdog dog(10.0);
         sim->run();
-        if (hash) *hash = sim->world().state_hash();
+        if (hash) *hash = state_hash(sim->world());
         if (sim->interrupted()) return {Outcome::silent_wrong, "ran on past its end (stopped by the watchdog)"};
-        return {sim->world().state_hash() == reference ? Outcome::harmless : Outcome::silent_wrong, ""};
+        return {state_hash(sim->world()) == reference ? Outcome::harmless : Outcome::silent_wrong, ""};
     } catch (const CheckpointError& e) {
         return {Outcome::refused, e.what()};
     } catch (const std::exception& e) {

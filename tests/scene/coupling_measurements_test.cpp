@@ -3,6 +3,7 @@
 // a group, balls outside a box, the pieces of a bonded rod and its first
 // break.
 #include "simulation.hpp"
+#include "world/cycle.hpp"  // (break_bond writes a contact row, as a model does)
 
 #include <measurements/measurement.hpp>
 
@@ -114,7 +115,7 @@ namespace {
 // Breaks the bond between bodies i and j by hand, as the host does when a
 // model breaks it: the row unbonded and the break logged at `time`.
 void break_bond(World& w, std::size_t i, std::size_t j, double time) {
-    for (const auto& inst : w.instances()) {
+    for (const auto& inst : w.cycle->instances()) {  // (inside the kernel: a host has no write access to contacts)
         const int slot = inst->desc->persist_slot;
         if (slot < 0) continue;
         ContactSet& c = inst->balls;

@@ -3,7 +3,7 @@
 // group with two materials are errors naming the JSON paths.
 #include <simulation.hpp>
 
-#include <host/plugin_host.hpp>
+#include <plab_host/plugins.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -37,7 +37,7 @@ json two_ball_scene() {
 }
 
 double model_property(const plab::World& w, const char* key) {
-    return w.instances().at(0)->property(key);
+    return w.model(0).property(key);
 }
 
 } // namespace
@@ -50,7 +50,7 @@ TEST_CASE("a material's constants reach the sph model and the passes that name i
     CHECK(model_property(w, "speed_of_sound") == 15);
     CHECK(model_property(w, "smoothing_length") == 0.012);
     CHECK(model_property(w, "kernel") == 0);
-    CHECK(w.instances()[0]->range == Approx(2 * 0.012));  // Wendland support 2h from the material's h
+    CHECK(w.model(0).range() == Approx(2 * 0.012));  // Wendland support 2h from the material's h
     w.prepare();
     // Islam eq. 10 with one fluid neighbour at rest at rho0 (p = 0), 1 cm above:
     // p_w = rho_f g·(x_w - x_f) = 1000 · 9.81 · 0.01, the scene gravity filled into gravity_y;
@@ -168,8 +168,8 @@ TEST_CASE("a scene material gives the properties the model's package material de
     scene["plugins"] = {test_plugin("material_probe")};
     {
         plab::Simulation sim(scene);
-        CHECK(sim.world().instances().at(0)->property("k") == Approx(2 * 1e4 * 4e4 / 5e4).epsilon(1e-15));  // harmonic
-        CHECK(sim.world().instances().at(0)->property("c") == 0);
+        CHECK(sim.world().model(0).property("k") == Approx(2 * 1e4 * 4e4 / 5e4).epsilon(1e-15));  // harmonic
+        CHECK(sim.world().model(0).property("c") == 0);
     }
     // c is the model's own: a scene material that states it gives it nothing, and is told so
     scene["materials"]["soft"]["c"] = 5;

@@ -4,8 +4,8 @@
 // spelling, and mixes two materials' values by the property's rule.
 #include <simulation.hpp>
 
-#include <common/error.hpp>
-#include <host/plugin_host.hpp>
+#include <plab_host/errors.hpp>
+#include <plab_host/plugins.hpp>
 #include <plab/testing.hpp>
 
 #include <catch2/catch.hpp>
@@ -45,7 +45,7 @@ std::string refusal(const json& s) {
     return "";
 }
 
-double property(const plab::Simulation& sim, const char* key) { return sim.world().instances().at(0)->property(key); }
+double property(const plab::Simulation& sim, const char* key) { return sim.world().model(0).property(key); }
 
 } // namespace
 

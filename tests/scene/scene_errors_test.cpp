@@ -272,7 +272,7 @@ TEST_CASE("a fixed timestep above the stable one names the factor and the stable
     // the factor and the limit are those of the world's nominal stable step
     s["timestep"]["allow_unstable"] = true;
     plab::Simulation sim(s, ".");
-    const double critical = sim.world().nominal_timestep().critical;
+    const double critical = nominal_timestep(sim.world()).critical;
     std::ostringstream expected;
     expected << 0.01 / critical << "x the stable limit " << critical << " s";
     CHECK_THAT(msg, Contains(expected.str()));

@@ -64,7 +64,7 @@ json packed_box(const std::string& model, const json& properties) {
 void at_factor(Simulation& sim, double factor) {
     World& w = sim.world();
     w.prepare();
-    w.fixed_dt = factor * w.stable_timestep().critical;
+    w.fixed_dt = factor * stable_timestep(w).critical;
 }
 
 } // namespace
@@ -95,10 +95,10 @@ TEST_CASE("the last good state after a stop is the run's state at that step, con
     // re-projects the shear force into the contact plane: equal to rounding
     auto shear = [](const World& w) {
         std::map<std::pair<BodyId, BodyId>, Vec> m;
-        for (const ContactSet* s : {&w.instances()[0]->balls, &w.instances()[0]->walls})
-            for (std::size_t k = 0; k < s->size(); ++k) {
-                const Vec f(&s->history[3 * k]);
-                if (f != Vec::Zero()) m[w.row_keys(*s, k)] = f;
+        for (const ContactTable& s : {w.model(0).balls(), w.model(0).walls()})
+            for (std::size_t k = 0; k < s.size(); ++k) {
+                const Vec f(s.history(k));
+                if (f != Vec::Zero()) m[s.key(k)] = f;
             }
         return m;
     };
@@ -318,7 +318,7 @@ json small_dam_break(double mach_factor, double jitter = 0, double scale = 1) {
 long steps_for(Simulation& sim, double seconds) {
     World& w = sim.world();
     w.prepare();
-    const double dt = w.fixed_dt > 0 ? w.fixed_dt : w.safety_factor * w.stable_timestep().critical;
+    const double dt = w.fixed_dt > 0 ? w.fixed_dt : w.safety_factor * stable_timestep(w).critical;
     return long(seconds / dt);
 }
 

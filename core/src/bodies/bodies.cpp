@@ -1,4 +1,4 @@
-#include "bodies/bodies.hpp"
+#include <plab_host/bodies.hpp>
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "bodies/fields.hpp"
+#include <plab_host/fields.hpp>
 
 namespace plab {
 

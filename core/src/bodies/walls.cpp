@@ -1,4 +1,4 @@
-#include "bodies/walls.hpp"
+#include <plab_host/walls.hpp>
 
 #include <Eigen/Geometry>
 #include <algorithm>

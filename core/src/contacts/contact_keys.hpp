@@ -3,15 +3,15 @@
 // are only ever appended, so an index names the same body at every rebuild.
 #pragma once
 
-#include "bodies/bodies.hpp"
-#include "bodies/walls.hpp"
+#include <plab_host/bodies.hpp>
+#include <plab_host/contacts.hpp>
+#include <plab_host/walls.hpp>
+
 #include "contacts/contact_set.hpp"
 
 #include <utility>
 
 namespace plab {
-
-using ContactKey = std::pair<BodyId, BodyId>;
 
 inline ContactKey pair_key(const Bodies& bodies, const Walls& walls, bool with_wall, std::int32_t end1,
                            std::int32_t end2) {

@@ -1,10 +1,11 @@
 // The contact table of one model instance and one kind (ball–ball or
 // ball–wall): candidate pairs with their history and the columns of the
-// contact batch. Rows are sorted by the ids of the two ends (World::row_keys);
+// contact batch. Rows are sorted by the ids of the two ends (Cycle::row_keys);
 // history is carried across rebuilds by that key.
 #pragma once
 
-#include "common/types.hpp"
+#include <plab_host/contacts.hpp>
+#include <plab_host/types.hpp>
 
 #include <plab/abi.h>
 
@@ -14,9 +15,6 @@
 
 namespace plab {
 
-// Rows per call of a model (one C ABI call per batch). Batches are fixed row
-// ranges, never per thread, so sums taken per batch are thread-count free.
-constexpr std::size_t kContactBatch = 512;
 constexpr std::size_t kBatchEnergies = 5;  // ContactSet::batch_energy per batch
 
 struct ContactSet {
@@ -30,13 +28,13 @@ struct ContactSet {
     // model gets them packed, forces/packed_batch.hpp) and hold stale values. Those
     // of a PLAB_MODEL_FORCE_AT_CENTRES model (centre_force_batch.cpp) write
     // back force and dt_limit only: moments, stiffness and energies stay
-    // zero. A `packed` set (World::packs_balls: dense, and no model of the
+    // zero. A `packed` set (Cycle::packs_balls: dense, and no model of the
     // world runs a rates stage over the full columns) does not even allocate distance, rel_velocity,
     // rel_angular_velocity, radius1, radius2, mass1, mass2, eff_mass,
     // eff_radius, strain, slip, dashpot and break_energy, nor gap, normal
     // and point: readers recompute those three from the positions
-    // (World::contact_gap/contact_normal/contact_point), and take the radii
-    // from the bodies (World::end_radius). ~200 B per row less.
+    // (Cycle::contact_gap/contact_normal/contact_point), and take the radii
+    // from the bodies (Cycle::end_radius). ~200 B per row less.
     bool packed = false;
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
@@ -45,10 +43,10 @@ struct ContactSet {
     std::vector<double> force, moment1, moment2, strain, slip, dashpot, k_t, k_r, dt_limit, break_energy;
     std::vector<std::vector<double>> acc1, acc2;
     // per batch of kContactBatch rows: strain, slip, dashpot, bond-break
-    // energy and wall power of the active rows (World::scatter_rows)
+    // energy and wall power of the active rows (Cycle::scatter_rows)
     std::vector<double> batch_energy;
     bool overlap_exceeded = false;  // an active contact overlaps beyond its model's max_overlap (geometry())
-    bool forces_zero = false;       // force zero and no step limit in every row (World::hold_still)
+    bool forces_zero = false;       // force zero and no step limit in every row (Cycle::hold_still)
 
     std::size_t size() const { return end1.size(); }
     void resize_columns(std::size_t n, int n_accumulated);
@@ -57,7 +55,7 @@ struct ContactSet {
     // name: checkpoints save them by name, release_columns() frees them.
     std::vector<std::pair<const char*, std::vector<double>*>> double_columns();
 
-    // The owning model's io and flags (abi.h; set once, World::add_instance).
+    // The owning model's io and flags (abi.h; set once, Cycle::add_instance).
     // A packed set does not keep the output columns its model never writes:
     // a model that declares its io and not PLAB_IO_MOMENTS has no moment
     // columns (48 B per row), and so on; a centre-force model (SPH) keeps

@@ -1,7 +1,8 @@
 #include "detection/neighbour_lists.hpp"
 
+#include <plab_host/errors.hpp>
+
 #include "common/buffers.hpp"
-#include "common/error.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,9 @@
 // skin since the last build.
 #pragma once
 
-#include "bodies/bodies.hpp"
-#include "bodies/walls.hpp"
+#include <plab_host/bodies.hpp>
+#include <plab_host/walls.hpp>
+
 #include "contacts/assignment.hpp"
 #include "contacts/history_carry.hpp"
 #include "contacts/model_instance.hpp"

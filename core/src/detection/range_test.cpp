@@ -21,7 +21,7 @@ bool on_centre_path(const ModelInstance& inst) {
 }
 } // namespace
 
-void World::mark_ball_rows_in_range() {
+void Cycle::mark_ball_rows_in_range() {
     const bool list = !passes_.empty();
     if (list) pass_contacts_.start();
     in_range_.resize(sets_.size());
@@ -44,7 +44,7 @@ void World::mark_ball_rows_in_range() {
 // b * kContactBatch on, then the
 // passes' contacts appended in batch order, so the list is the same for
 // any thread count (`list`: there are passes).
-void World::mark_set_in_range(std::uint32_t si, bool list) {
+void Cycle::mark_set_in_range(std::uint32_t si, bool list) {
     const ModelInstance& inst = *set_owner_[si];
     RowsInRange& r = in_range_[si];
     const bool centre = on_centre_path(inst);

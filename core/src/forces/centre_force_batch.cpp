@@ -20,7 +20,7 @@ namespace {
 template <int Dim>
 bool pack_centre_loop(const Bodies& B, const ContactSet& s, const OptionalInputs& optional, double max_overlap,
                       std::size_t n_active, DenseBatch& d) {
-    // (no contact point: readers recompute it, World::contact_point; no spin)
+    // (no contact point: readers recompute it, Cycle::contact_point; no spin)
     return pack_rows(B, s, optional, max_overlap, n_active, d,
                      [&](std::size_t a, std::int32_t i, std::int32_t j, double, double dist, double) {
                          if (Dim == 2) {
@@ -44,7 +44,7 @@ bool pack_centre_loop(const Bodies& B, const ContactSet& s, const OptionalInputs
 // mark_ball_rows_in_range() listed this cycle (or range_test_rows()), packed
 // into d with the centres' relative velocity. True when an active contact
 // overlaps beyond the model's max_overlap.
-bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+bool Cycle::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                              DenseBatch& d) {
     ContactSet& s = *sets_[si];
     const auto& B = bodies;
@@ -76,11 +76,11 @@ bool World::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
 
 // Back from the packed rows of batch [begin, end): history and force to
 // the set's columns (their readers: outputs, stress; the force only on a
-// step whose forces are read, World::contact_forces_wanted), the
+// step whose forces are read, Cycle::contact_forces_wanted), the
 // batch's least step limit to PackedTable::limits (the stable step), and
 // each row's force added, in row order, to the chunk's partial sums: -F on
 // end 1, +F on end 2, no moment.
-void World::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d,
+void Cycle::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d,
                                std::size_t begin, const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);

@@ -1,10 +1,11 @@
 // Force–displacement: the host computes each candidate contact's geometry
 // once (normal, gap, contact point, relative velocity), calls each model once
 // per batch of contacts, then sums forces onto bodies in a fixed order.
-#include "world/world.hpp"
+#include "world/cycle.hpp"
+
+#include <plab_host/errors.hpp>
 
 #include "forces/packed_batch.hpp"
-#include "common/error.hpp"
 #include "forces/row_lists.hpp"
 
 #include <algorithm>
@@ -14,7 +15,7 @@
 
 namespace plab {
 
-void World::geometry(ModelInstance& inst, ContactSet& s) {
+void Cycle::geometry(ModelInstance& inst, ContactSet& s) {
     const std::size_t n = s.size();
     const std::size_t n_batches = (n + kContactBatch - 1) / kContactBatch;
     bool exceeded = false;
@@ -39,7 +40,7 @@ void clear_outputs(ContactSet& s, std::size_t o, std::size_t m) {
 // `clear`: zero the outputs of every row first (the rates stage writes some
 // that the force stage must not see); otherwise the geometry zeroed those
 // of the active rows, which are the only ones a model writes.
-int World::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::size_t m, std::uint32_t stage,
+int Cycle::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::size_t m, std::uint32_t stage,
                       const ReadFields& fields, bool clear) {
     if (clear) clear_outputs(s, o, m);  // here rather than up front: the rows stay in cache for the model
     // pointers into the accumulation columns, on the stack: no allocation in the cycle
@@ -66,7 +67,7 @@ int World::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::si
     return inst.desc->compute(inst.state, inst.props.data(), &batch);
 }
 
-void World::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
+void Cycle::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
     const std::size_t n = s.size();
     if (n == 0) return;
     const ReadFields fields = read_fields(inst);
@@ -82,7 +83,7 @@ void World::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
     if (inst.desc->persist_slot >= 0) record_breaks(inst, s);
 }
 
-void World::model_failed(const ModelInstance& inst) const {
+void Cycle::model_failed(const ModelInstance& inst) const {
     throw RunError("contact model '" + inst.model + "' reported a failure in compute() at step " +
                    std::to_string(step_count));
 }
@@ -93,7 +94,7 @@ void World::model_failed(const ModelInstance& inst) const {
 // and the rows' forces added to the chunk's partial sums while the batch is
 // in cache. Batches and chunks are fixed row ranges, so every sum is
 // thread-count free.
-void World::force_sweep(std::uint32_t si, bool with_geometry) {
+void Cycle::force_sweep(std::uint32_t si, bool with_geometry) {
     ContactSet& s = *sets_[si];
     ModelInstance& inst = *instances_[si / 2];
     const std::size_t n = s.size();
@@ -150,7 +151,7 @@ void World::force_sweep(std::uint32_t si, bool with_geometry) {
 
 // A model marks a bond it just broke with -mode in its persist slot; the
 // host records the break and leaves the contact unbonded.
-void World::record_breaks(ModelInstance& inst, ContactSet& s) {
+void Cycle::record_breaks(ModelInstance& inst, ContactSet& s) {
     const int slot = inst.desc->persist_slot;
     for (std::size_t k = 0; k < s.size(); ++k) {
         double& state = s.history[k * inst.stride + slot];
@@ -169,7 +170,7 @@ void World::record_breaks(ModelInstance& inst, ContactSet& s) {
 
 // Adds contact row k's contributions to the fields its model accumulates,
 // for body i at end 1 or end 2.
-void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i) {
+void Cycle::accumulate(const ModelInstance& owner, const ContactSet& s, std::uint32_t k, bool is_end2, std::size_t i) {
     for (std::size_t a = 0; a < owner.fields_accumulated.size(); ++a)
         fields.column(owner.fields_accumulated[a])[i] += is_end2 ? s.acc2[a][k] : s.acc1[a][k];
 }
@@ -178,7 +179,7 @@ void World::accumulate(const ModelInstance& owner, const ContactSet& s, std::uin
 // moment), summed in row order into the partial sums of its chunk. The
 // batch's energy sums are taken here too (sum_energies() adds the batches
 // in order, so the totals do not depend on the thread count).
-void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, const Chunk& ch) {
+void Cycle::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const auto& B = bodies;
     double* fm = sums_.slots(ch);  // body i at width * (i - lo), or listed
@@ -211,7 +212,7 @@ void World::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t end, c
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = wall_power;
 }
 
-void World::scatter_to_chunks(std::uint32_t si) {
+void Cycle::scatter_to_chunks(std::uint32_t si) {
     const std::size_t n = sets_[si]->size();
     sets_[si]->batch_energy.assign(kBatchEnergies * ((n + kContactBatch - 1) / kContactBatch), 0.0);
 #pragma omp parallel for schedule(static) if (n >= parallel_min)
@@ -226,7 +227,7 @@ void World::scatter_to_chunks(std::uint32_t si) {
 
 // PFC local damping and mass-proportional viscous damping of body i's force
 // and moment (their work added to local_work).
-void World::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
+void Cycle::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
     const double alpha = bodies.local_damping[i];
     if (alpha > 0) {  // PFC local damping: -alpha |F| sign(v), per component
         for (int c = 0; c < 3; ++c) {
@@ -251,7 +252,7 @@ void World::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) const {
 // Bodies [i0, i1) after their contact sums: field accumulations, damping
 // (its work added to local_work), the 2D projection. False when a body's
 // state may be non-finite.
-bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
+bool Cycle::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
     if (any_accumulation_)  // fields of rates-stage models are summed after that stage
         for (std::size_t i = i0; i < i1; ++i)
             for (const BodyContact& en : body_contacts_.of(i)) {
@@ -271,7 +272,7 @@ bool World::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
 // world's force and moment projected on its plane, then false when a sum of
 // a body's values is Inf or NaN (so is the sum then; an overflow of finite
 // values too is caught, check_finite() tells which body).
-bool World::bodies_finite(std::size_t i0, std::size_t i1) {
+bool Cycle::bodies_finite(std::size_t i0, std::size_t i1) {
     Vec* force = bodies.force.data();
     Vec* moment = bodies.moment.data();
     const Vec *position = bodies.position.data(), *velocity = bodies.velocity.data();
@@ -292,7 +293,7 @@ bool World::bodies_finite(std::size_t i0, std::size_t i1) {
 
 // Sum contact forces and moments onto bodies, then finish each body, in
 // blocks of bodies. True when a body's state may be non-finite.
-bool World::reduce(double closing_kick) {
+bool Cycle::reduce(double closing_kick) {
     const std::size_t n = bodies.size();
     for (auto& inst : instances_)
         if (!inst->desc->rates_stage)
@@ -336,7 +337,7 @@ bool World::reduce(double closing_kick) {
 // Models with a rates stage accumulate field rates (SPH continuity) over
 // this cycle's geometry; the sums land in their fields, then the passes of
 // phase RATES_DONE turn them into states before any force is computed.
-void World::rates_stage() {
+void Cycle::rates_stage() {
     bool any = false;
     for (auto& inst : instances_) {
         if (!inst->desc->rates_stage) continue;
@@ -365,7 +366,7 @@ void World::rates_stage() {
 // of its accumulated fields. Otherwise the stage is skipped and those fields
 // keep their last values (zero): with summation density, SPH's continuity
 // sum feeds nothing, and skipping it halves the model's calls.
-bool World::field_computed(int f) const {
+bool Cycle::field_computed(int f) const {
     bool skipped = true, filled_by_rates = false;  // the rates stage runs for all or none (step())
     for (const auto& inst : instances_) {
         if (!inst->desc->rates_stage) continue;
@@ -380,8 +381,8 @@ bool World::field_computed(int f) const {
 // ones a model reads that no pass declares and no model accumulates
 // (nothing in the cycle writes them) and whose values are the default now.
 // A scan each force pass, not a flag kept: a value set from outside
-// (World::field(), a checkpoint) counts at once.
-void World::find_fields_at_default() {
+// (Cycle::field(), a checkpoint) counts at once.
+void Cycle::find_fields_at_default() {
     std::vector<std::uint8_t>& at_default = field_at_default_;  // first the candidates (no allocation in the cycle)
     at_default.assign(fields.size(), 0);
     for (const auto& inst : instances_)
@@ -397,7 +398,7 @@ void World::find_fields_at_default() {
     }
 }
 
-ReadFields World::read_fields(const ModelInstance& inst) const {
+ReadFields Cycle::read_fields(const ModelInstance& inst) const {
     ReadFields r;
     for (std::size_t f = 0; f < inst.fields_read.size(); ++f) {
         const int idx = inst.fields_read[f];
@@ -410,7 +411,7 @@ ReadFields World::read_fields(const ModelInstance& inst) const {
     return r;
 }
 
-bool World::rates_stage_needed(const ModelInstance& inst) const {
+bool Cycle::rates_stage_needed(const ModelInstance& inst) const {
     for (int f : inst.fields_accumulated) {
         for (const PassInstance& p : passes_)
             if (std::find(p.fields.begin(), p.fields.end(), f) != p.fields.end()) return true;
@@ -424,7 +425,7 @@ bool World::rates_stage_needed(const ModelInstance& inst) const {
 // PFC's per-ball estimate; the reason names the model and group that set
 // it, so a diagnostic can say "2.1x the stable limit of model linear for
 // group grains". Strings are built once, for the winner only.
-StableStep World::stable_timestep() {
+StableStep Cycle::stable_timestep() {
     sum_stiffness();
     if (!nominal_valid_) { nominal_cache_ = nominal_timestep(); nominal_valid_ = true; }
     StableStep best = nominal_cache_;
@@ -474,13 +475,13 @@ StableStep World::stable_timestep() {
 }
 
 // "grains-walls": the groups of a contact's two ends.
-std::string World::contact_groups(const ContactSet& s, std::size_t k) const {
+std::string Cycle::contact_groups(const ContactSet& s, std::size_t k) const {
     const int g2 = s.with_wall ? walls.walls[walls.facets[s.end2[k]].wall].group : bodies.group[s.end2[k]];
     return assignment_.group_name(bodies.group[s.end1[k]]) + "-" + assignment_.group_name(g2);
 }
 
 // The model that gives ball i most of its stiffness.
-std::string World::stiffest_model(std::size_t i) const {
+std::string Cycle::stiffest_model(std::size_t i) const {
     std::vector<double> k_of(instances_.size(), 0.0);
     if (body_contacts_.built_for(bodies.size()))
         for (const BodyContact& en : body_contacts_.of(i)) {
@@ -498,7 +499,7 @@ std::string World::stiffest_model(std::size_t i) const {
 
 namespace plab {
 
-std::vector<Eigen::Matrix3d> World::ball_stress() const {
+std::vector<Eigen::Matrix3d> Cycle::ball_stress() const {
     std::vector<Eigen::Matrix3d> sigma(bodies.size(), Eigen::Matrix3d::Zero());
     for (const auto& inst : instances_)
         for (const ContactSet* s : {&inst->balls, &inst->walls})
@@ -520,7 +521,7 @@ std::vector<Eigen::Matrix3d> World::ball_stress() const {
     return sigma;
 }
 
-std::size_t World::bond(int a, int b, double gap_tolerance) {
+std::size_t Cycle::bond(int a, int b, double gap_tolerance) {
     if (!prepared_) prepare();
     std::size_t made = 0;
     for (auto& inst : instances_) {
@@ -539,7 +540,7 @@ std::size_t World::bond(int a, int b, double gap_tolerance) {
     return made;
 }
 
-std::size_t World::intact_bonds() const {
+std::size_t Cycle::intact_bonds() const {
     std::size_t n = 0;
     for (const auto& inst : instances_) {
         const int slot = inst->desc->persist_slot;

@@ -8,8 +8,9 @@
 // instability detector's check, done here while the gap is at hand).
 #pragma once
 
-#include "bodies/bodies.hpp"
-#include "bodies/walls.hpp"
+#include <plab_host/bodies.hpp>
+#include <plab_host/walls.hpp>
+
 #include "contacts/model_instance.hpp"
 
 #include <cstdint>
@@ -45,7 +46,7 @@ struct RangeTest {
 };
 
 // The surface gap of two balls at centre distance dist: every ball–ball
-// path (the range test, both packers, World::contact_gap) takes it from
+// path (the range test, both packers, Cycle::contact_gap) takes it from
 // here, so a gap recomputed for a reader has the range test's bits.
 inline double surface_gap(double dist, double ri, double rj) { return dist - ri - rj; }
 

@@ -89,7 +89,7 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
 // rows that left the range back to its declared defaults (a separated
 // contact is forgotten, as the adapter's batch loop did; a row that stays
 // out of range keeps them). Returns how many rows are in range.
-std::size_t World::range_test_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+std::size_t Cycle::range_test_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                                    std::uint32_t* row, double* distance) {
     ContactSet& s = *sets_[si];
     const RangeTest in_range(inst);
@@ -163,7 +163,7 @@ bool pack_rows_in_range(const Bodies& B, const ContactSet& s, const OptionalInpu
 // The range test (range_test_rows), then the geometry of the rows in range
 // packed into d. True when an active contact overlaps beyond its model's
 // max_overlap.
-bool World::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+bool Cycle::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                            DenseBatch& d) {
     const std::size_t n_active = range_test_rows(inst, si, begin, end, d.row, d.distance);
     d.rows = d.row;
@@ -294,11 +294,11 @@ void write_back(double* col, std::size_t width, const double* dense, const Dense
 // Back from the packed rows of batch [begin, end): history, and what the
 // readers of the contact columns use (force, moments, stiffnesses, step
 // limit: outputs, stress, stable step, bond breaks, checkpoints; normal and
-// point they recompute, World::contact_point; the force only on a step
-// whose forces are read, World::contact_forces_wanted); then each row's
+// point they recompute, Cycle::contact_point; the force only on a step
+// whose forces are read, Cycle::contact_forces_wanted); then each row's
 // force and moments added to the chunk's partial sums, and the batch's
 // energy sums, as scatter_rows() does for full columns.
-void World::unpack_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
+void Cycle::unpack_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
                         const Chunk& ch) {
     ContactSet& s = *sets_[si];
     const std::size_t stride = std::size_t(inst.stride);

@@ -6,7 +6,8 @@
 // centre forces.
 #pragma once
 
-#include "bodies/bodies.hpp"
+#include <plab_host/bodies.hpp>
+
 #include "contacts/assignment.hpp"
 #include "contacts/model_instance.hpp"
 

@@ -1,6 +1,6 @@
-#include "host/plugin_host.hpp"
+#include <plab_host/plugins.hpp>
 
-#include "common/error.hpp"
+#include <plab_host/errors.hpp>
 
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>

@@ -5,7 +5,7 @@
 // neighbour build are its inputs.
 #pragma once
 
-#include "bodies/bodies.hpp"
+#include <plab_host/bodies.hpp>
 
 #include <array>
 #include <cstdint>

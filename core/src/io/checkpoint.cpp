@@ -1,4 +1,4 @@
-// Checkpoint file format and the World's state in it (see checkpoint.hpp).
+// Checkpoint file format and the Cycle's state in it (see checkpoint.hpp).
 // Everything a later step reads is saved as it is, derived columns included
 // (contact geometry, per-body stiffness sums, the contact list passes see,
 // the Verlet reference positions): recomputing them after a restart would
@@ -337,7 +337,7 @@ void save_walls(const Walls& w, CheckpointWriter& out) {
     out.u64(w.next_facet_id);
 }
 
-void load_walls(Walls& w, const World& world, CheckpointReader& in) {
+void load_walls(Walls& w, const Cycle& world, CheckpointReader& in) {
     in.section("walls");
     const std::uint64_t n = in.u64();
     if (n != w.walls.size())
@@ -346,7 +346,7 @@ void load_walls(Walls& w, const World& world, CheckpointReader& in) {
         const std::string name = in.str();
         if (name != x.name) in.fail("wall '" + name + "' where the scene has '" + x.name + "'");
         x.group = int(in.u64());
-        if (x.group < 0 || std::size_t(x.group) >= world.group_names().size()) in.fail("wall '" + name + "' has an unknown group");
+        if (x.group < 0 || std::size_t(x.group) >= world.groups().group_names().size()) in.fail("wall '" + name + "' has an unknown group");
         for (Vec* v : {&x.velocity, &x.angular_velocity, &x.centre, &x.force, &x.moment}) *v = in.vec();
         x.facets = in.column<int>();
     }
@@ -369,9 +369,9 @@ void load_walls(Walls& w, const World& world, CheckpointReader& in) {
 // ---- contacts -------------------------------------------------------------
 
 // The keys are written though the world derives them from the ends
-// (World::row_keys): the file stays readable as before, and a restart checks
+// (Cycle::row_keys): the file stays readable as before, and a restart checks
 // that its rows name the same bodies.
-void save_set(const World& w, const ModelInstance& inst, const ContactSet& cs, CheckpointWriter& out) {
+void save_set(const Cycle& w, const ModelInstance& inst, const ContactSet& cs, CheckpointWriter& out) {
     auto& s = const_cast<ContactSet&>(cs);  // double_columns() hands out pointers; nothing is changed
     out.column(s.end1);
     out.column(s.end2);
@@ -449,7 +449,7 @@ std::string slot_list(const plab_contact_model_desc& d) {
 
 // ---- the world ------------------------------------------------------------
 
-void WorldCheckpoint::save_scalars(const World& w, CheckpointWriter& out) {
+void WorldCheckpoint::save_scalars(const Cycle& w, CheckpointWriter& out) {
     out.section("world");
     out.u32(std::uint32_t(w.dim));
     out.f64(w.time);
@@ -466,7 +466,7 @@ void WorldCheckpoint::save_scalars(const World& w, CheckpointWriter& out) {
     out.column(w.assignment_.table());
 }
 
-void WorldCheckpoint::save_fields(const World& w, CheckpointWriter& out) {
+void WorldCheckpoint::save_fields(const Cycle& w, CheckpointWriter& out) {
     out.section("fields");
     out.u64(w.fields.size());
     for (std::size_t f = 0; f < w.fields.size(); ++f) {
@@ -475,7 +475,7 @@ void WorldCheckpoint::save_fields(const World& w, CheckpointWriter& out) {
     }
 }
 
-void WorldCheckpoint::save_contacts(const World& w, CheckpointWriter& out) {
+void WorldCheckpoint::save_contacts(const Cycle& w, CheckpointWriter& out) {
     out.section("contacts");
     out.u64(w.instances_.size());
     for (const auto& inst : w.instances_) {
@@ -488,7 +488,7 @@ void WorldCheckpoint::save_contacts(const World& w, CheckpointWriter& out) {
     }
 }
 
-void WorldCheckpoint::save_detection(const World& w, CheckpointWriter& out) {
+void WorldCheckpoint::save_detection(const Cycle& w, CheckpointWriter& out) {
     out.section("detection");
     out.u8(w.neighbours_.invalidated());
     out.u8(w.prepared_);
@@ -502,7 +502,7 @@ void WorldCheckpoint::save_detection(const World& w, CheckpointWriter& out) {
     out.column(w.pass_contacts_.wall_column());
 }
 
-void WorldCheckpoint::save_passes(const World& w, CheckpointWriter& out) {
+void WorldCheckpoint::save_passes(const Cycle& w, CheckpointWriter& out) {
     out.section("passes");
     out.u64(w.passes_.size());
     for (const PassInstance& p : w.passes_) {
@@ -525,7 +525,7 @@ void WorldCheckpoint::save_passes(const World& w, CheckpointWriter& out) {
     }
 }
 
-void WorldCheckpoint::save_log(const World& w, CheckpointWriter& out) {
+void WorldCheckpoint::save_log(const Cycle& w, CheckpointWriter& out) {
     out.section("bond_breaks");
     out.u64(w.bond_breaks.size());
     for (const BondBreak& b : w.bond_breaks) {
@@ -552,7 +552,7 @@ void WorldCheckpoint::save_log(const World& w, CheckpointWriter& out) {
     out.vec(b.hi);
 }
 
-void WorldCheckpoint::load_scalars(World& w, CheckpointReader& in) {
+void WorldCheckpoint::load_scalars(Cycle& w, CheckpointReader& in) {
     in.section("world");
     const std::uint32_t dim = in.u32();
     if (int(dim) != w.dim) in.fail("a " + std::to_string(dim) + "D state for a " + std::to_string(w.dim) + "D scene");
@@ -577,7 +577,7 @@ void WorldCheckpoint::load_scalars(World& w, CheckpointReader& in) {
     w.assignment_.set_table(std::move(cmat));
 }
 
-void WorldCheckpoint::load_fields(World& w, CheckpointReader& in) {
+void WorldCheckpoint::load_fields(Cycle& w, CheckpointReader& in) {
     in.section("fields");
     const std::uint64_t n_fields = in.u64();
     std::vector<bool> seen(w.fields.size(), false);
@@ -594,7 +594,7 @@ void WorldCheckpoint::load_fields(World& w, CheckpointReader& in) {
         if (!seen[f]) w.fields.column(int(f)).assign(w.bodies.size(), w.fields.default_value(int(f)));
 }
 
-void WorldCheckpoint::load_contacts(World& w, CheckpointReader& in) {
+void WorldCheckpoint::load_contacts(Cycle& w, CheckpointReader& in) {
     in.section("contacts");
     const std::uint64_t n_inst = in.u64();
     if (n_inst != w.instances_.size())
@@ -632,7 +632,7 @@ void WorldCheckpoint::load_contacts(World& w, CheckpointReader& in) {
     }
 }
 
-void WorldCheckpoint::load_detection(World& w, CheckpointReader& in) {
+void WorldCheckpoint::load_detection(Cycle& w, CheckpointReader& in) {
     in.section("detection");
     NeighbourLists::Saved lists;
     lists.invalidated = in.u8() != 0;
@@ -653,7 +653,7 @@ void WorldCheckpoint::load_detection(World& w, CheckpointReader& in) {
         in.fail("the stiffness sums do not match the bodies");
 }
 
-void WorldCheckpoint::load_passes(World& w, CheckpointReader& in) {
+void WorldCheckpoint::load_passes(Cycle& w, CheckpointReader& in) {
     in.section("passes");
     const std::uint64_t n_passes = in.u64();
     if (n_passes != w.passes_.size())
@@ -680,7 +680,7 @@ void WorldCheckpoint::load_passes(World& w, CheckpointReader& in) {
     }
 }
 
-void WorldCheckpoint::load_log(World& w, CheckpointReader& in) {
+void WorldCheckpoint::load_log(Cycle& w, CheckpointReader& in) {
     in.section("bond_breaks");
     w.bond_breaks.resize(in.u64());
     for (BondBreak& b : w.bond_breaks) {
@@ -710,7 +710,7 @@ void WorldCheckpoint::load_log(World& w, CheckpointReader& in) {
 
 // Sections in file order; bodies and walls come between the assignment
 // table and the fields.
-void WorldCheckpoint::save(const World& w, CheckpointWriter& out) {
+void WorldCheckpoint::save(const Cycle& w, CheckpointWriter& out) {
     save_scalars(w, out);
     save_bodies(w.bodies, out);
     save_walls(w.walls, out);
@@ -721,7 +721,7 @@ void WorldCheckpoint::save(const World& w, CheckpointWriter& out) {
     save_log(w, out);
 }
 
-void WorldCheckpoint::load(World& w, CheckpointReader& in) {
+void WorldCheckpoint::load(Cycle& w, CheckpointReader& in) {
     load_scalars(w, in);
     load_bodies(w.bodies, in);
     for (int g : w.bodies.group)
@@ -741,5 +741,8 @@ void WorldCheckpoint::load(World& w, CheckpointReader& in) {
         for (ContactSet* s : {&inst->balls, &inst->walls}) w.fill_pair_constants(*s);
     w.build_entries();
 }
+
+void save_world(const World& w, CheckpointWriter& out) { WorldCheckpoint::save(*w.cycle, out); }
+void load_world(World& w, CheckpointReader& in) { WorldCheckpoint::load(*w.cycle, in); }
 
 } // namespace plab

@@ -2,16 +2,17 @@
 // what a step changes — the motion of the bodies, the walls, the fields, the
 // energies, the clock — and of the contact rows whose history is not the
 // model's default (the others, and all geometry, come back with the rebuild
-// after a restore). A step that goes unstable puts it back (World::step).
+// after a restore). A step that goes unstable puts it back (Cycle::step).
 // Everything else about a body changes only with the scene, which drops the
 // copy: it never spans a change.
 #pragma once
 
-#include "bodies/bodies.hpp"
-#include "bodies/fields.hpp"
-#include "bodies/walls.hpp"
+#include <plab_host/bodies.hpp>
+#include <plab_host/energies.hpp>
+#include <plab_host/fields.hpp>
+#include <plab_host/walls.hpp>
+
 #include "contacts/model_instance.hpp"
-#include "monitor/energies.hpp"
 
 #include <cstdint>
 #include <vector>

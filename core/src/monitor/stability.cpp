@@ -8,11 +8,11 @@
 //     keeps (Energies::balance), O(1);
 //   * overlap beyond a fraction of the smaller radius — in geometry().
 // Passes report what only they know (SPH density) through the pass view's
-// diagnostic (abi.h, plab_pass_view::diagnostic; World::run_passes). When a check fires, the run
-// stops with a Diagnostic; World::step() restores the last good state.
+// diagnostic (abi.h, plab_pass_view::diagnostic; Cycle::run_passes). When a check fires, the run
+// stops with a Diagnostic; Cycle::step() restores the last good state.
 #include "monitor/stability.hpp"
 
-#include "common/error.hpp"
+#include <plab_host/errors.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,51 +1,20 @@
-// The instability detector's limits and its diagnostic. A run that goes
-// unstable must stop with a message naming the quantity, the body or
-// contact, the step and a likely cause — never write garbage. The checks
-// are generic: the core knows states, energies, contact gaps and radii;
-// a pass that knows more (SPH density) reports through the pass view's
-// diagnostic buffer (abi.h, plab_pass_view::diagnostic).
+// The instability detector: the generic checks behind the limits and the
+// diagnostic of <plab_host/stability.hpp>. The core knows states, energies,
+// contact gaps and radii; a pass that knows more (SPH density) reports
+// through the pass view's diagnostic buffer (abi.h, plab_pass_view::diagnostic).
 #pragma once
 
-#include "bodies/bodies.hpp"
-#include "bodies/walls.hpp"
-#include "common/types.hpp"
+#include <plab_host/bodies.hpp>
+#include <plab_host/energies.hpp>
+#include <plab_host/stability.hpp>
+#include <plab_host/types.hpp>
+#include <plab_host/walls.hpp>
+
 #include "contacts/assignment.hpp"
-#include "monitor/energies.hpp"
 
 #include <string>
 
 namespace plab {
-
-struct StabilityLimits {
-    bool enabled = true;
-    // Energy that appears from nowhere: the gain of the energy balance
-    // (kinetic + strain - work done + dissipated) since the last change of
-    // the scene, as a fraction of the energy turned over (initial kinetic and
-    // strain energy, work done, dissipated energy, and 1 % of the potential
-    // energy m |g| L the particles hold over their own extent L along
-    // gravity: a floor for scenes at rest, where the other terms are ~0).
-    // A stable leapfrog keeps it at O(dt²); an unstable one grows it
-    // exponentially, so the threshold only sets how early the detector fires.
-    double energy_gain = 0.5;  // 1, (0, inf); inf: off
-    // Particles leaving the domain: the scene's domain, else the bounding
-    // box of the walls grown by `domain_margin` times its largest extent.
-    Vec domain_min = Vec::Constant(-kInf), domain_max = Vec::Constant(kInf);
-    double domain_margin = 0.5;  // 1, [0, inf)
-};
-
-// What stopped a run.
-struct Diagnostic {
-    std::string quantity;  // e.g. "overlap", "energy gain", "non-finite state", "sph_density"
-    std::string subject;   // e.g. "contact 3-4 of model linear (groups grains-grains)"
-    std::uint64_t step = 0;
-    double time = 0;
-    std::string detail;    // value against limit
-    std::string cause;     // likely cause and what to do
-    std::string message() const {
-        return "unstable: " + quantity + " at step " + std::to_string(step) + " (t = " + std::to_string(time) +
-               " s): " + subject + ": " + detail + "; likely cause: " + cause;
-    }
-};
 
 // The energy balance and domain the detector compares with, measured at the
 // last change of the scene: a `set velocity` adds kinetic energy that no
@@ -56,7 +25,7 @@ struct StabilityBaseline {
 };
 
 // The generic checks, each a Diagnostic with an empty quantity when it
-// passes. The overlap check reads the contact tables (World::check_overlaps).
+// passes. The overlap check reads the contact tables (Cycle::check_overlaps).
 class InstabilityDetector {
 public:
     StabilityLimits limits;

@@ -2,9 +2,9 @@
 // box) the automatic step must still be safe, so each assigned group pair is
 // asked, through one synthetic touching contact between its lightest balls,
 // what stiffness or step limit it will bring.
-#include "world/world.hpp"
+#include "world/cycle.hpp"
 
-#include "common/error.hpp"
+#include <plab_host/errors.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -112,7 +112,7 @@ StableStep probe_contact(const ModelInstance& inst, int dim, const Probe& a, con
 
 } // namespace
 
-StableStep World::nominal_timestep() {
+StableStep Cycle::nominal_timestep() {
     const int ng = assignment_.group_count();
     std::vector<Probe> lightest(ng);
     for (std::size_t i = 0; i < bodies.size(); ++i) {

@@ -6,7 +6,8 @@
 // contacts in their fixed order (contacts/body_contacts.hpp).
 #pragma once
 
-#include "bodies/bodies.hpp"
+#include <plab_host/bodies.hpp>
+
 #include "contacts/body_contacts.hpp"
 #include "contacts/contact_set.hpp"
 

@@ -6,7 +6,8 @@
 // sums for any thread count.
 #pragma once
 
-#include "bodies/bodies.hpp"
+#include <plab_host/bodies.hpp>
+
 #include "contacts/contact_set.hpp"
 
 #include <cstdint>

@@ -1,9 +1,9 @@
 // The world's diagnostics: the detector's checks at the end of a cycle,
 // the names of the balls and contacts a diagnostic points at, and the stop
-// that restores the last good state (World::step).
-#include "world/world.hpp"
+// that restores the last good state (Cycle::step).
+#include "world/cycle.hpp"
 
-#include "common/error.hpp"
+#include <plab_host/errors.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 
 namespace plab {
 
-void World::detect_instability() {
+void Cycle::detect_instability() {
     if (!detector_.limits.enabled) return;
     if (left_domain_)  // (the drift flagged a position out of the domain or not finite)
         if (Diagnostic d = detector_.domain_check(bodies, assignment_); !d.quantity.empty()) stop(d);
@@ -21,13 +21,13 @@ void World::detect_instability() {
 
 // geometry() flags a contact set with an overlap beyond its model's limit
 // while it computes the gaps; the slow path names the contact.
-void World::check_overlaps() {
+void Cycle::check_overlaps() {
     for (auto& inst : instances_)
         for (const ContactSet* s : {&inst->balls, &inst->walls})
             if (s->overlap_exceeded) overlap_stop(*inst, *s);
 }
 
-void World::overlap_stop(const ModelInstance& inst, const ContactSet& s) {
+void Cycle::overlap_stop(const ModelInstance& inst, const ContactSet& s) {
     for (std::size_t k = 0; k < s.size(); ++k) {
         if (!s.active[k]) continue;  // (before the gap: a packed set's takes a square root)
         const double r = s.with_wall ? end_radius(s, k, false) : std::min(end_radius(s, k, false), end_radius(s, k, true));
@@ -44,7 +44,7 @@ void World::overlap_stop(const ModelInstance& inst, const ContactSet& s) {
     }
 }
 
-std::string World::contact_name(const ModelInstance& inst, const ContactSet& s, std::size_t k) const {
+std::string Cycle::contact_name(const ModelInstance& inst, const ContactSet& s, std::size_t k) const {
     const int i = s.end1[k];
     std::string name = "contact of ball id " + std::to_string(bodies.id[i]) + " (group " + assignment_.group_name(bodies.group[i]) + ") and ";
     if (s.with_wall) {
@@ -72,9 +72,9 @@ std::string assess_timestep(const StableStep& s, double dt, const std::string& w
 
 // The first suspect of any instability: a step above the stable limit the
 // models reported at the last good state.
-std::string World::timestep_assessment() const { return assess_timestep(snapshot_stable_, last_dt, ""); }
+std::string Cycle::timestep_assessment() const { return assess_timestep(snapshot_stable_, last_dt, ""); }
 
-void World::stop(Diagnostic d) {
+void Cycle::stop(Diagnostic d) {
     d.step = step_count;
     d.time = time;
     std::string dt = timestep_assessment();
@@ -118,7 +118,7 @@ std::string name_balls(std::string message, const Bodies& bodies, const std::vec
 
 // A pass's message reads "QUANTITY: what, where, value against bound;
 // likely cause: ..." (abi.h); the parts go where the host's own go.
-Diagnostic World::pass_diagnostic(const std::string& pass, const std::string& raw) const {
+Diagnostic Cycle::pass_diagnostic(const std::string& pass, const std::string& raw) const {
     const std::string message = name_balls(raw, bodies, assignment_.group_names());
     Diagnostic d;
     const std::size_t colon = message.find(": ");

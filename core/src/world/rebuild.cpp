@@ -1,7 +1,7 @@
 // The contact tables after a neighbour search: the new candidates installed
 // with their history, their columns laid out for the models, the per-body
 // lists and the reduction's chunks made for them.
-#include "world/world.hpp"
+#include "world/cycle.hpp"
 
 #include "common/buffers.hpp"
 
@@ -15,7 +15,7 @@ namespace plab {
 // A set's columns for its rows, packed or full as the world's models want
 // (packs_balls): after a rebuild, a restore, or a pass that needs the full
 // columns back.
-void World::lay_out_columns(const ModelInstance& inst, ContactSet& set) {
+void Cycle::lay_out_columns(const ModelInstance& inst, ContactSet& set) {
     set.packed = !set.with_wall && packs_balls(inst);
     set.resize_columns(set.size(), int(inst.fields_accumulated.size()));
 }
@@ -23,7 +23,7 @@ void World::lay_out_columns(const ModelInstance& inst, ContactSet& set) {
 // A set is packed when force_sweep() takes the dense path for it: no rates
 // stage runs over full columns (force_pass(): swept_), and its model
 // accumulates nothing or only sums of a rates stage, which is skipped.
-bool World::packs_balls(const ModelInstance& inst) const {
+bool Cycle::packs_balls(const ModelInstance& inst) const {
     for (const auto& other : instances_)
         if (other->desc->rates_stage && rates_stage_needed(*other)) return false;
     return inst.fields_accumulated.empty() || inst.desc->rates_stage;
@@ -31,7 +31,7 @@ bool World::packs_balls(const ModelInstance& inst) const {
 
 // The radii and masses of the ends, for a model that reads the full columns
 // (a packed set's go to its model packed, from the bodies).
-void World::fill_pair_constants(ContactSet& set) const {
+void Cycle::fill_pair_constants(ContactSet& set) const {
     if (set.packed) return;
     for (std::size_t r = 0; r < set.size(); ++r) {
         const std::int32_t i = set.end1[r], j = set.end2[r];
@@ -46,7 +46,7 @@ void World::fill_pair_constants(ContactSet& set) const {
     }
 }
 
-void World::rebuild() {
+void Cycle::rebuild() {
     std::size_t rows = 0;
     for (const auto& inst : instances_) rows += inst->balls.size() + inst->walls.size();
     const bool lean = rows > lean_rebuild_rows;
@@ -80,7 +80,7 @@ void World::rebuild() {
 
 // A table's rows become the new candidates, with their history carried by
 // key (contacts/history_carry.hpp), its columns laid out for them.
-void World::install(const CarryContext& carry, ModelInstance& inst, ContactSet& set, PairList& pairs,
+void Cycle::install(const CarryContext& carry, ModelInstance& inst, ContactSet& set, PairList& pairs,
                     TableBuffers& t) {
     const bool sides = carry_history(carry, inst, set, pairs, t);
     lay_out_columns(inst, set);
@@ -90,7 +90,7 @@ void World::install(const CarryContext& carry, ModelInstance& inst, ContactSet& 
 
 // Per-body lists of the contact rows touching each body, in (set, row)
 // order: the reduction walks them, so sums do not depend on threads.
-void World::build_entries() {
+void Cycle::build_entries() {
     sets_.clear();
     set_owner_.clear();
     for (auto& inst : instances_) {

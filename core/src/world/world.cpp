@@ -1,458 +1,86 @@
-// World set-up (groups, assignment table, fields, passes) and the cycle.
-// Detection lives in detection/, the force pass in forces/.
-#include "world/world.hpp"
+// The host API (plab_host/world.hpp, contacts.hpp): the world's functions
+// and the contact views, each handed to the cycle (world/cycle.hpp).
+#include "world/cycle.hpp"
 
-#include "common/buffers.hpp"
-#include "forces/geometry.hpp"
-#include "common/error.hpp"
-
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstring>
-#include <sstream>
-#include <stdexcept>
+#include <plab_host/world.hpp>
 
 namespace plab {
 
-const char* const phase_names[ph_count] = {"timestep", "law_of_motion", "contact_detection", "pre_force_passes",
-                                           "force_displacement", "reduction", "post_force_passes", "integration",
-                                           "stability_checks"};
-
-namespace {
-struct PhaseTimer {
-    double& slot;
-    std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-    ~PhaseTimer() { slot += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
-};
-} // namespace
-
-World::World(int d, std::shared_ptr<PluginHost> host) : dim(d), host_(std::move(host)) { bodies.dim = d; }
-
-World::~World() {
-    for (auto& inst : instances_)
-        if (inst->desc->destroy && inst->state) inst->desc->destroy(inst->state);
-    for (auto& p : passes_)
-        if (p.desc->destroy && p.state) p.desc->destroy(p.state);
+World::World(int d, std::shared_ptr<PluginHost> host)
+    : dim(d), cycle(std::make_unique<Cycle>(*this, std::move(host))) {
+    bodies.dim = d;
 }
 
+World::~World() = default;
+
+int World::group_index(const std::string& name) { return cycle->groups().group_index(name); }
+int World::find_group(const std::string& name) const { return cycle->groups().find_group(name); }
+const std::vector<std::string>& World::group_names() const { return cycle->groups().group_names(); }
 int World::add_instance(const std::string& model, std::vector<double> props) {
-    const plab_contact_model_desc* d = host_->model(model);
-    if (!d) throw InputError("", "contact model '" + model + "' is not loaded");
-    auto inst = std::make_unique<ModelInstance>();
-    inst->model = model;
-    inst->desc = d;
-    inst->props = std::move(props);
-    inst->state = d->create ? d->create(inst->props.data()) : nullptr;
-    if (d->create && !inst->state)
-        throw PluginError("contact model '" + model + "' (" + host_->library_of_model(model) +
-                          ") failed to create an instance from its properties");
-    inst->range = d->activity_range(inst->props.data());
-    if (!std::isfinite(inst->range))
-        throw PluginError("contact model '" + model + "' reports a non-finite activity range");
-    inst->stride = int(d->history_count);
-    // overlap means something for mechanical contacts only (SPH pairs are
-    // "in contact" at a distance)
-    inst->max_overlap = d->range_kind == PLAB_RANGE_GAP ? 1.0 : kInf;
-    if (d->fields_read_count > ReadFields::kMax)
-        throw PluginError("contact model '" + model + "' reads " + std::to_string(d->fields_read_count) +
-                          " body fields; plab passes at most " + std::to_string(ReadFields::kMax));
-    for (uint32_t f = 0; f < d->fields_read_count; ++f)
-        inst->fields_read.push_back(register_field(d->fields_read[f].name, d->fields_read[f].default_value, d->fields_read[f].unit));
-    for (uint32_t f = 0; f < d->fields_accumulated_count; ++f)
-        inst->fields_accumulated.push_back(
-            register_field(d->fields_accumulated[f].name, d->fields_accumulated[f].default_value,
-                           d->fields_accumulated[f].unit));
-    inst->walls.with_wall = true;
-    for (ContactSet* s : {&inst->balls, &inst->walls}) {
-        s->model_io = d->io;
-        s->model_flags = d->flags;
-    }
-    instances_.push_back(std::move(inst));
-    mark_dirty();
-    return int(instances_.size()) - 1;
+    return cycle->add_instance(model, std::move(props));
 }
+void World::assign(int group_a, int group_b, int instance) { cycle->assign(group_a, group_b, instance); }
+int World::assigned(int group_a, int group_b) const { return cycle->groups().assigned(group_a, group_b); }
+std::size_t World::model_count() const { return cycle->instances().size(); }
+ModelView World::model(std::size_t instance) const { return {*cycle, *cycle->instances().at(instance)}; }
+void World::set_max_overlap(std::size_t instance, double fraction_of_radius) {
+    cycle->instances().at(instance)->max_overlap = fraction_of_radius;
+}
+int World::register_field(const std::string& name, double default_value, const char* unit) {
+    return cycle->register_field(name, default_value, unit);
+}
+void World::add_pass(const std::string& name, std::vector<double> props) { cycle->add_pass(name, std::move(props)); }
+void World::set_skin(double skin) { cycle->set_skin(skin); }
+void World::step() { cycle->step(); }
+void World::prepare() { cycle->prepare(); }
+void World::mark_dirty() { cycle->mark_dirty(); }
+std::size_t World::bond(int group_a, int group_b, double gap_tolerance) {
+    return cycle->bond(group_a, group_b, gap_tolerance);
+}
+StabilityLimits& World::stability_limits() { return cycle->stability_limits(); }
 
-void World::assign(int a, int b, int instance) {
-    assignment_.assign(a, b, instance);
-    mark_dirty();
-}
+StableStep stable_timestep(const World& w) { return w.cycle->stable_timestep(); }
+StableStep nominal_timestep(const World& w) { return w.cycle->nominal_timestep(); }
+std::uint64_t state_hash(const World& w) { return w.cycle->state_hash(); }
+std::vector<Eigen::Matrix3d> ball_stress(const World& w) { return w.cycle->ball_stress(); }
+double unbalanced_force_ratio(const World& w) { return w.cycle->unbalanced_force_ratio(); }
+std::size_t active_contacts(const World& w) { return w.cycle->active_contacts(); }
+std::size_t intact_bonds(const World& w) { return w.cycle->intact_bonds(); }
+std::uint64_t rebuilds(const World& w) { return w.cycle->rebuilds(); }
+bool field_computed(const World& w, int field) { return w.cycle->field_computed(field); }
+bool contact_forces_current(const World& w) { return w.cycle->contact_forces_current(); }
+bool at_last_good(const World& w) { return w.cycle->at_last_good(); }
 
-void World::add_pass(const std::string& name, std::vector<double> props) {
-    const plab_pass_desc* d = host_->pass(name);
-    if (!d) throw InputError("", "pass '" + name + "' is not loaded");
-    PassInstance p;
-    p.desc = d;
-    p.props = std::move(props);
-    p.state = d->create ? d->create(p.props.data()) : nullptr;
-    if (d->create && !p.state) throw PluginError("pass '" + name + "' failed to create its state");
-    for (uint32_t f = 0; f < d->field_count; ++f)
-        p.fields.push_back(register_field(d->fields[f].name, d->fields[f].default_value, d->fields[f].unit));
-    // stable order: by phase, then stage, then order of addition
-    auto it = passes_.begin();
-    while (it != passes_.end() &&
-           (it->desc->phase < d->phase || (it->desc->phase == d->phase && it->desc->stage <= d->stage)))
-        ++it;
-    passes_.insert(it, std::move(p));
-}
+// ---- contact views ----
 
-bool World::has_passes(std::uint32_t phase) const {
-    return std::any_of(passes_.begin(), passes_.end(), [phase](const PassInstance& p) { return p.desc->phase == phase; });
+std::size_t ContactTable::size() const { return set_->size(); }
+bool ContactTable::with_wall() const { return set_->with_wall; }
+bool ContactTable::active(std::size_t k) const { return set_->active[k] != 0; }
+std::size_t ContactTable::end1(std::size_t k) const { return std::size_t(set_->end1[k]); }
+std::size_t ContactTable::end2(std::size_t k) const { return std::size_t(set_->end2[k]); }
+ContactKey ContactTable::key(std::size_t k) const { return cycle_->row_keys(*set_, k); }
+const double* ContactTable::history(std::size_t k) const {
+    return set_->history.data() + k * std::size_t(instance_->stride);
 }
+bool ContactTable::bonded(std::size_t k) const {
+    const int slot = instance_->desc->persist_slot;
+    return slot >= 0 && history(k)[slot] > 0;
+}
+Vec ContactTable::force(std::size_t k) const { return Vec(&set_->force[3 * k]); }
+Vec ContactTable::normal(std::size_t k) const { return cycle_->contact_normal(*set_, k); }
+Vec ContactTable::point(std::size_t k) const { return cycle_->contact_point(*set_, k); }
+double ContactTable::gap(std::size_t k) const { return cycle_->contact_gap(*set_, k); }
+double ContactTable::end_radius(std::size_t k, bool end2) const { return cycle_->end_radius(*set_, k, end2); }
+double ContactTable::stiffness(std::size_t k) const { return set_->k_t_at(k); }
+double ContactTable::dt_limit(std::size_t k) const { return set_->dt_limit_at(k); }
 
-void World::run_passes(std::uint32_t phase) {
-    if (passes_.empty()) return;
-    std::vector<double*> cols;
-    for (auto& p : passes_) {
-        if (p.desc->phase != phase) continue;
-        cols.clear();
-        for (int f : p.fields) cols.push_back(fields.column(f).data());
-        plab_pass_view v{sizeof(plab_pass_view)};
-        v.dim = uint32_t(dim);
-        v.body_count = uint32_t(bodies.size());
-        v.dt = last_dt;
-        v.time = time;
-        v.position = bodies.position.empty() ? nullptr : bodies.position[0].data();
-        v.velocity = bodies.velocity.empty() ? nullptr : bodies.velocity[0].data();
-        v.force = bodies.force.empty() ? nullptr : bodies.force[0].data();
-        v.radius = bodies.radius.data();
-        v.mass = bodies.mass.data();
-        v.group = bodies.group.data();
-        v.fields = cols.data();
-        v.contact_count = uint32_t(pass_contacts_.size());
-        v.contact_end1 = pass_contacts_.end1();
-        v.contact_end2 = pass_contacts_.end2();
-        v.contact_end2_is_wall = pass_contacts_.end2_is_wall();
-        // the distances hold at these positions while the range test's lists do
-        v.contact_distance = pass_contacts_.distance(in_range_marked_);
-        char diagnostic[2048];  // room for a pass's advice (sph_eos: ~800 characters)
-        diagnostic[0] = '\0';
-        v.diagnostic = diagnostic;
-        v.diagnostic_capacity = sizeof diagnostic;
-        const int rc = p.desc->run(p.state, p.props.data(), &v);
-        if (rc == PLAB_PASS_UNSTABLE) stop(pass_diagnostic(p.desc->name, diagnostic));
-        if (rc != 0)
-            throw RunError(std::string("pass '") + p.desc->name + "' failed at step " + std::to_string(step_count));
-    }
-}
-
-void World::prepare() {
-    bodies.trim();  // the scene is built: no more room for bodies than bodies
-    fields.resize(bodies.size());
-    stiffness_.clear(bodies.size());
-    neighbours_.invalidate();
-    {
-        PhaseTimer t{phase_seconds[ph_detection]};
-        rebuild();
-    }
-    // dt = 0 in the batch: evaluate forces at this state without advancing
-    // incremental history (a re-evaluation must not add a shear increment)
-    const double dt = last_dt;
-    last_dt = 0;
-    contact_forces_kept_ = true;  // (also after a step that failed before its forces)
-    force_pass();
-    leapfrog_.cache_inverse_masses(bodies);
-    leapfrog_.body_energies(bodies, 0.0);
-    sum_energies(0.0);  // states (kinetic, strain) at this instant; no flow
-    last_dt = dt;
-    prepared_ = true;
-    detector_.measure_baseline(energies, bodies, walls, gravity);
-    stopped = Diagnostic{};  // a run that goes on after a stop is running again
-}
-
-// Kick–drift–kick form of the leapfrog (thesis eqs. 32–36): the same
-// positions as v(t+dt/2) = v(t-dt/2) + a dt, x += v dt, but velocities are
-// kept at whole steps so outputs, energies and restarts are synchronised.
-// Models see the half-step velocity, as in PFC.
-void World::step() {
-    at_last_good_ = false;
-    if (snapshot_interval > 0 && (step_count % snapshot_interval == 0 || !last_good_.valid())) take_snapshot();
-    try {
-        advance();
-    } catch (const RunError& e) {
-        if (!last_good_.valid()) throw;
-        const std::uint64_t failed_at = step_count;
-        restore_snapshot();
-        at_last_good_ = true;
-        throw RunError(std::string(e.what()) + "; the world is back at its last good state, step " +
-                       std::to_string(step_count) + " (t = " + std::to_string(time) + " s), " +
-                       std::to_string(failed_at - step_count) + " steps before the failure",
-                       e.quantity());
-    }
-}
-
-void World::take_snapshot() {
-    if (!prepared_) prepare();
-    last_good_.keep(bodies, walls, fields, energies, {time, last_dt, step_count}, bond_breaks.size(), instances_);
-    snapshot_stable_ = stable_timestep();
-    if (on_snapshot) on_snapshot();
-}
-
-// Contact rows come back with their history; the world re-detects and
-// re-evaluates forces at this state (dt = 0), as after any change, so that
-// what is written at the stop (VTK, the last-good checkpoint) and the next
-// step see the forces of this state.
-void World::restore_snapshot() {
-    Clock clock;
-    std::size_t breaks = 0;
-    last_good_.restore(bodies, walls, fields, energies, clock, breaks, instances_);
-    time = clock.time;
-    last_dt = clock.last_dt;
-    step_count = clock.step_count;
-    bond_breaks.resize(breaks);
-    const Diagnostic why = stopped;  // prepare() clears it: a run that goes on is running again
-    prepare();
-    stopped = why;
-}
-
-void World::advance() {
-    if (!prepared_) prepare();
-    double dt;
-    {
-        PhaseTimer t{phase_seconds[ph_timestep]};
-        dt = fixed_dt > 0 ? fixed_dt : safety_factor * stable_timestep().critical;
-        if (!std::isfinite(dt) || dt <= 0)
-            throw RunError("no stable timestep: no contact model reports a stiffness or step limit; set a fixed "
-                           "timestep (timestep.fixed)");
-        last_dt = dt;
-    }
-    {
-        PhaseTimer t{phase_seconds[ph_motion]};
-        kick_and_drift(dt);
-        neighbours_.walls_moved(walls.move(dt, dim));
-    }
-    {
-        PhaseTimer t{phase_seconds[ph_detection]};
-        if (neighbours_.stale(bodies)) rebuild();
-    }
-    time += dt;
-    ++step_count;
-    const bool post_force = has_passes(PLAB_PHASE_POST_FORCE);
-    contact_forces_kept_ = !contact_forces_wanted || contact_forces_wanted();
-    force_pass(post_force ? 0.0 : 0.5 * dt);  // the closing half kick inside reduce(), unless a pass comes between
-    {
-        PhaseTimer t{phase_seconds[ph_motion]};
-        if (post_force) leapfrog_.kick(bodies, 0.5 * dt, true, parallel_min);
-        sum_energies(dt);
-    }
-    {
-        PhaseTimer t{phase_seconds[ph_integrate]};
-        run_passes(PLAB_PHASE_INTEGRATE);
-    }
-    {
-        PhaseTimer t{phase_seconds[ph_stability]};
-        detect_instability();
-    }
-}
-
-void World::force_pass(double closing_kick) {
-    {
-        PhaseTimer t{phase_seconds[ph_pre_force]};
-        run_passes(PLAB_PHASE_PRE_FORCE);
-    }
-    {
-        PhaseTimer t{phase_seconds[ph_force]};
-        find_fields_at_default();
-        packed_.clear_limits(sets_.size());  // force_sweep() keeps those of centre-force sets, the columns the others'
-        // a pass added since the last rebuild may need a rates stage over
-        // full columns that a packed set lacks (packs_balls)
-        bool repacked = false;
-        for (auto& inst : instances_)
-            if (inst->balls.packed != packs_balls(*inst)) {
-                lay_out_columns(*inst, inst->balls);
-                fill_pair_constants(inst->balls);
-                repacked = true;
-            }
-        if (repacked) build_entries();  // (which rows it lists depends on packing)
-        // without a rates stage, each set is done in one sweep over batches
-        // (geometry, model, scatter to slots); a rates stage needs all the
-        // geometry before any force. A rates stage whose sums nothing reads
-        // is skipped (rates_stage_needed).
-        still_.find(bodies, assignment_, instances_);
-        bool rates_models = false;
-        swept_ = true;
-        for (auto& inst : instances_) {
-            rates_models |= inst->desc->rates_stage != 0;
-            swept_ &= !(inst->desc->rates_stage && rates_stage_needed(*inst));
-        }
-        for (std::uint32_t si = 0; si < sets_.size(); ++si) {
-            ModelInstance& inst = *instances_[si / 2];
-            ContactSet& s = *sets_[si];
-            if (!s.with_wall && swept_) continue;  // geometry in the sweep
-            geometry(inst, s);
-            if (s.with_wall) resolve_wall_features(bodies, walls, s);
-        }
-        if (swept_ && rates_models) {
-            // the passes that turn rates into states (e.g. summation density,
-            // the EOS) still run before the forces, on this cycle's contacts
-            mark_ball_rows_in_range();  // (it lists the passes' contacts too)
-            run_passes(PLAB_PHASE_RATES_DONE);
-            for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
-            in_range_marked_ = false;
-        } else if (swept_) {
-            for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
-            if (!passes_.empty()) pass_contacts_.list_active(sets_);  // the sweeps set the active flags
-        } else {
-            if (!passes_.empty()) pass_contacts_.list_active(sets_);
-            rates_stage();
-            for (std::uint32_t m = 0; m < instances_.size(); ++m) {
-                ModelInstance& inst = *instances_[m];
-                if (still_.centre_table_still(2 * m, inst.balls, instances_)) hold_still(inst.balls);  // (as force_sweep)
-                else compute(inst, inst.balls, PLAB_STAGE_FORCES);
-                compute(inst, inst.walls, PLAB_STAGE_FORCES);
-            }
-        }
-    }
-    {
-        PhaseTimer t{phase_seconds[ph_reduction]};
-        if (reduce(closing_kick)) check_finite();
-    }
-    {
-        PhaseTimer t{phase_seconds[ph_post_force]};
-        run_passes(PLAB_PHASE_POST_FORCE);
-    }
-}
-
-// What the drift reads besides the bodies: gravity, the detector's domain,
-// the positions at the last build and the drift correction fields.
-DriftInputs World::drift_inputs() const {
-    DriftInputs in;
-    in.gravity = gravity;
-    in.lo = detector_.baseline.lo;
-    in.hi = detector_.baseline.hi;
-    in.position_at_build = &neighbours_.position_at_build();
-    const int cx = fields.index(PLAB_DRIFT_CORRECTION_X), cy = fields.index(PLAB_DRIFT_CORRECTION_Y),
-              cz = fields.index(PLAB_DRIFT_CORRECTION_Z);
-    if (cx >= 0 && cy >= 0 && cz >= 0) in.correction = {fields.column(cx).data(), fields.column(cy).data(), fields.column(cz).data()};
-    return in;
-}
-
-void World::take_drift(const DriftResult& r) {
-    energies.body += r.body_work;
-    left_domain_ = r.left_domain;
-    neighbours_.bodies_moved(r.max_drift2);
-}
-
-// The first half of a step's law of motion: half a kick, the PRE_DRIFT
-// passes (e.g. XSPH: a drift velocity correction from v(t + dt/2)), the
-// drift; without such a pass or correction, in one loop.
-void World::kick_and_drift(double dt) {
-    const DriftInputs in = drift_inputs();
-    if (has_passes(PLAB_PHASE_PRE_DRIFT) || in.corrected()) {
-        leapfrog_.kick(bodies, 0.5 * dt, false, parallel_min);
-        run_passes(PLAB_PHASE_PRE_DRIFT);
-        take_drift(leapfrog_.drift(bodies, drift_inputs(), dt, parallel_min));
-        return;
-    }
-    take_drift(leapfrog_.kick_and_drift(bodies, in, dt, parallel_min));
-}
-
-// For a plug-in author: the model and contact whose output went non-finite.
-std::string World::non_finite_contact(std::size_t body) const {
-    for (const auto& inst : instances_)
-        for (const ContactSet* set : {&inst->balls, &inst->walls})
-            for (std::size_t k = 0; k < set->size(); ++k) {
-                if (!set->active[k] || (std::size_t(set->end1[k]) != body && (set->with_wall || std::size_t(set->end2[k]) != body)))
-                    continue;
-                const Vec f(&set->force[3 * k]), m1 = set->moment1_at(k), m2 = set->moment2_at(k);
-                if (f.allFinite() && m1.allFinite() && m2.allFinite()) continue;
-                std::ostringstream s;
-                s << "contact model '" << inst->model << "' returned a non-finite force or moment (a contact model returned NaN) for the contact of ball id "
-                  << bodies.id[set->end1[k]] << (set->with_wall ? " with a wall" : " and ball id " + std::to_string(bodies.id[set->end2[k]]))
-                  << " at gap " << contact_gap(*set, k) << " m: check its law for division by zero, sqrt or log of a negative "
-                  << "number, or use of history before it is set";
-                return s.str();
-            }
-    return "";
-}
-
-void World::check_finite() {
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        if (bodies.position[i].allFinite() && bodies.force[i].allFinite() && bodies.moment[i].allFinite() &&
-            bodies.velocity[i].allFinite())
-            continue;
-        std::ostringstream s;
-        s << "position " << bodies.position[i].transpose() << ", force " << bodies.force[i].transpose();
-        Diagnostic d;
-        d.quantity = "non-finite state";
-        d.subject = "ball id " + std::to_string(bodies.id[i]) + " (group " + assignment_.group_name(bodies.group[i]) + ")";
-        d.detail = s.str();
-        // for a plug-in author: the model and contact whose output went non-finite
-        const std::string culprit = non_finite_contact(i);
-        d.cause = culprit.empty() ? "a contact model returned NaN or Inf (or a pass did), or the state overflowed" : culprit;
-        stop(d);
-    }
-}
-
-// Energy flows over the step just taken; states (kinetic, strain) are
-// recomputed at the synchronised velocities.
-void World::sum_energies(double dt) {
-    // the bodies' part, summed per block by the closing kick or body_energies()
-    const double kinetic = leapfrog_.kinetic();
-    double boundary = leapfrog_.boundary_work();
-    // contact energies, summed per batch of rows by scatter_rows()
-    double strain = 0;
-    for (const ContactSet* s : sets_)
-        for (std::size_t b = 0; b < s->batch_energy.size(); b += kBatchEnergies) {
-            const double* e = &s->batch_energy[b];
-            strain += e[0];
-            if (dt == 0) continue;  // a re-evaluation, not a step: no dissipation
-            energies.slip += e[1];
-            energies.dashpot += e[2];
-            energies.bond_break += e[3];
-            boundary += e[4] * dt;  // work of the walls on the balls
-        }
-    energies.kinetic = kinetic;
-    energies.strain = strain;
-    energies.boundary += boundary;
-}
-
-double World::unbalanced_force_ratio() const {
-    double unbalanced = 0;
-    std::size_t free_bodies = 0;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const std::uint8_t fix = bodies.fixity[i];
-        Vec f = bodies.force[i];
-        for (int c = 0; c < 3; ++c)
-            if (fix & (dof_x << c)) f[c] = 0;
-        if ((fix & (dof_x | dof_y | dof_z)) == (dof_x | dof_y | dof_z)) continue;
-        unbalanced += f.norm();
-        ++free_bodies;
-    }
-    double contact = 0;
-    std::size_t n = 0;
-    for (auto& inst : instances_)
-        for (const ContactSet* s : {&inst->balls, &inst->walls})
-            for (std::size_t k = 0; k < s->size(); ++k)
-                if (s->active[k]) {
-                    contact += Vec(&s->force[3 * k]).norm();
-                    ++n;
-                }
-    if (free_bodies == 0) return 0;
-    if (n == 0 || contact == 0) return kInf;
-    return (unbalanced / double(free_bodies)) / (contact / double(n));
-}
-
-std::size_t World::active_contacts() const {
-    std::size_t n = 0;
-    for (auto& inst : instances_)
-        for (const ContactSet* s : {&inst->balls, &inst->walls})
-            for (std::uint8_t a : s->active) n += a;
-    return n;
-}
-
-std::uint64_t World::state_hash() const {
-    std::uint64_t h = 1469598103934665603ull;
-    auto mix = [&h](const void* p, std::size_t bytes) {
-        const auto* c = static_cast<const unsigned char*>(p);
-        for (std::size_t i = 0; i < bytes; ++i) h = (h ^ c[i]) * 1099511628211ull;
-    };
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        mix(bodies.position[i].data(), 3 * sizeof(double));
-        mix(bodies.velocity[i].data(), 3 * sizeof(double));
-        mix(bodies.angular_velocity[i].data(), 3 * sizeof(double));
-    }
-    return h;
-}
+const std::string& ModelView::model() const { return instance_->model; }
+const plab_contact_model_desc& ModelView::desc() const { return *instance_->desc; }
+const std::vector<double>& ModelView::properties() const { return instance_->props; }
+double ModelView::range() const { return instance_->range; }
+int ModelView::history_slot(const std::string& name) const { return instance_->history_slot(name); }
+double ModelView::property(const std::string& name) const { return instance_->property(name); }
+ContactTable ModelView::balls() const { return {*cycle_, *instance_, instance_->balls}; }
+ContactTable ModelView::walls() const { return {*cycle_, *instance_, instance_->walls}; }
 
 } // namespace plab

@@ -1,28 +1,29 @@
-// The DEM kernel: bodies, walls, the contact-model assignment table, contact
-// detection, and the cycle in PFC order. Physics lives in plug-ins; the world
-// computes contact geometry once (Yade's Ig2), hands it to each model in
-// batches, and sums forces onto bodies in a fixed order so the answer does
-// not depend on the thread count.
+// The cycle of the DEM kernel, behind the host API's World
+// (plab_host/world.hpp): the contact-model assignment table, contact
+// detection, the force pipeline, the reduction, the leapfrog and the
+// stability monitor, run in PFC's order on the world's state. Physics lives
+// in plug-ins; the cycle computes
+// contact geometry once (Yade's Ig2), hands it to each model in batches, and
+// sums forces onto bodies in a fixed order so the answer does not depend on
+// the thread count.
 #pragma once
 
-#include "bodies/bodies.hpp"
-#include "bodies/fields.hpp"
+#include <plab_host/world.hpp>
+
 #include "contacts/assignment.hpp"
 #include "contacts/body_contacts.hpp"
+#include "contacts/contact_keys.hpp"
 #include "contacts/model_instance.hpp"
 #include "detection/neighbour_lists.hpp"
 #include "detection/range_test.hpp"
+#include "forces/geometry.hpp"
 #include "forces/packed_tables.hpp"
 #include "forces/still_instances.hpp"
 #include "integration/leapfrog.hpp"
-#include "reduction/chunked_sums.hpp"
-#include "host/plugin_host.hpp"
 #include "monitor/last_good.hpp"
 #include "monitor/stability.hpp"
 #include "monitor/stiffness_sums.hpp"
-#include "forces/geometry.hpp"
-#include "common/types.hpp"
-#include "bodies/walls.hpp"
+#include "reduction/chunked_sums.hpp"
 
 #include <array>
 #include <functional>
@@ -39,7 +40,7 @@ struct DenseBatch;  // forces/packed_batch.hpp: the active rows of one batch, pa
 // columns in its `fields_read` order, and which of them hold their
 // default at every body (plab_contact_batch::body_fields_at_default).
 struct ReadFields {
-    static constexpr std::size_t kMax = 16;  // (World::add_instance refuses more)
+    static constexpr std::size_t kMax = 16;  // (Cycle::add_instance refuses more)
     static_assert(kMax <= 64, "one bit of at_default per field");
     const double* cols[kMax] = {};
     std::uint64_t at_default = 0;
@@ -52,151 +53,66 @@ struct PassInstance {
     std::vector<int> fields;
 };
 
-// A bond that broke (thesis §3.3.3): where, when, and in which mode.
-struct BondBreak {
-    std::uint64_t step = 0;
-    double time = 0;
-    BodyId id1 = 0, id2 = 0;
-    Vec point = Vec::Zero();
-    int mode = 0;  // PLAB_BREAK_TENSION / PLAB_BREAK_SHEAR
-    std::string model;
-};
-
-enum Phase { ph_timestep, ph_motion, ph_detection, ph_pre_force, ph_force, ph_reduction, ph_post_force, ph_integrate, ph_stability, ph_count };
-extern const char* const phase_names[ph_count];
-
-struct StableStep {
-    double critical = kInf;  // min sqrt(m/k), sqrt(I/k_r), dt limits
-    std::string limited_by;  // which model/body/constraint set it
-};
-
-class World {
+class Cycle {
 public:
-    World(int dim, std::shared_ptr<PluginHost> host);
-    ~World();
-    World(const World&) = delete;
-    World& operator=(const World&) = delete;
+    // The cycle of world `w`: it runs on w's state, which it
+    // holds by reference (the host API's World owns it).
+    Cycle(World& w, std::shared_ptr<PluginHost> host);
+    ~Cycle();
+    Cycle(const Cycle&) = delete;
+    Cycle& operator=(const Cycle&) = delete;
 
+    // ---- the world's state (plab_host/world.hpp says what each is) ----
     const int dim;
-    Bodies bodies;
-    Walls walls;
-    Vec gravity = Vec::Zero();
-    std::size_t parallel_min = kParallelMin;  // shorter loops run on one thread
+    Bodies& bodies;
+    Walls& walls;
+    BodyFields& fields;
+    Vec& gravity;
+    std::size_t& parallel_min;
+    double &fixed_dt, &safety_factor, &time;
+    std::uint64_t& step_count;
+    double& last_dt;
+    std::function<bool()>& contact_forces_wanted;
+    std::vector<BondBreak>& bond_breaks;
+    std::uint64_t& snapshot_interval;
+    std::size_t& lean_rebuild_rows;
+    std::function<void()>& on_snapshot;
+    Diagnostic& stopped;
+    Energies& energies;
+    std::array<double, ph_count>& phase_seconds;
 
-    // ---- groups and the contact-model assignment table (PFC's CMAT) ----
-    int group_index(const std::string& name) { return assignment_.group_index(name); }  // creates on first use
-    int find_group(const std::string& name) const { return assignment_.find_group(name); }  // -1 when unknown
-    const std::vector<std::string>& group_names() const { return assignment_.group_names(); }
-    // Creates an instance of a loaded model with property values (in the
-    // model's declaration order); returns its index.
+    // ---- what the World's functions of the same names do ----
+    AssignmentTable& groups() { return assignment_; }
+    const AssignmentTable& groups() const { return assignment_; }
     int add_instance(const std::string& model, std::vector<double> props);
-    // Assigns an instance (or -1: no contact, no cost) to a pair of groups.
     void assign(int group_a, int group_b, int instance);
-    int assigned(int group_a, int group_b) const { return assignment_.assigned(group_a, group_b); }
-    const std::vector<std::unique_ptr<ModelInstance>>& instances() const { return instances_; }
-
-    // ---- per-body fields registered by plug-ins ----
-    BodyFields fields;
-    // Registers a field at every body (BodyFields::add).
+    const Instances& instances() const { return instances_; }
     int register_field(const std::string& name, double default_value, const char* unit = nullptr) {
         return fields.add(name, default_value, unit, bodies.size());
     }
-    // False for a field that only a skipped rates stage would fill (no pass
-    // or model reads it, rates_stage_needed): it holds zeros, so outputs
-    // leave it out rather than write zeros as if they were values.
     bool field_computed(int f) const;
-
     void add_pass(const std::string& name, std::vector<double> props);
-
-    // ---- time stepping ----
-    double fixed_dt = 0;         // > 0: fixed step; 0: automatic
-    double safety_factor = 0.8;  // automatic step = safety * critical
-    double time = 0;
-    std::uint64_t step_count = 0;
-    double last_dt = 0;
-
-    // Critical step from the contacts of the last force pass and from a
-    // nominal contact per assigned group pair (before any contact exists).
     StableStep stable_timestep();
     StableStep nominal_timestep();
-    // One cycle: timestep, law of motion, detection, pre-force passes,
-    // force–displacement, reduction, post-force passes, integration.
     void step();
-    // Forces at the current state (first call, or after the scene changed).
     void prepare();
-    // Whether anything reads the contact forces of the step being taken
-    // (outputs, histories, stress, the unbalanced-force ratio): asked by
-    // step() once the step's time and count are set, before its forces.
-    // When it says no, the packed ball–ball rows' force columns are not
-    // written that step (a stream of 24 bytes per contact in range, 4-5 %
-    // of a step): they keep the forces of the last step that wrote them,
-    // and contact_forces_current() is false until the next one does. A
-    // batch with a non-finite force is written all the same (the
-    // diagnostic names the contact). Unset, as for any caller that reads
-    // the columns itself: every step writes them. prepare() always does.
-    std::function<bool()> contact_forces_wanted;
     bool contact_forces_current() const { return contact_forces_kept_; }
-
-    // ---- bonds ----
-    // Marks every contact between the two groups whose surface gap is at
-    // most `gap_tolerance` as bonded, for models with a persist slot
-    // (PFC's `contact method bond gap`). Returns the number of bonds made.
     std::size_t bond(int group_a, int group_b, double gap_tolerance);
     std::size_t intact_bonds() const;
-    std::vector<BondBreak> bond_breaks;
-
-    // ---- last good state ----
-    // Every `snapshot_interval` steps (0: never) the world keeps a copy of its
-    // state; a step that goes unstable restores it before the RunError
-    // leaves step(), so outputs and the caller see the last good state.
-    std::uint64_t snapshot_interval = 100;
-    // Above this many candidate rows a rebuild keeps nothing twice: the
-    // columns, entries and partial sums go before the new lists are built,
-    // the scratch after (a big world rebuilds every hundred steps or so, and
-    // the memory matters: the kept scratch would be ~20 MB beside the 94 MiB
-    // peak of a settled pile of 1e5 balls; smaller worlds, such as the SPH
-    // scene that rebuilds every few steps, keep their buffers, so the cycle
-    // allocates nothing). Results are the same bits either way.
-    std::size_t lean_rebuild_rows = std::size_t(1) << 18;
-    // Called whenever the world has taken its last-good snapshot: whoever
-    // keeps state beside the world (a Simulation's outputs) keeps theirs
-    // for the same instant.
-    std::function<void()> on_snapshot;
-    // Whether the world is back at its last-good snapshot after a step
-    // failed (until the next step).
     bool at_last_good() const { return at_last_good_; }
-
-    // ---- the instability detector (monitor/stability.hpp) ----
     StabilityLimits& stability_limits() { return detector_.limits; }
-    Diagnostic stopped;  // what stopped the last step (quantity empty: nothing)
-
-    // ---- measurements ----
-    Energies energies;
-    // Per-ball average stress (tension positive), PFC's measurement:
-    // sigma = (1/V) sum over contacts of r_c ⊗ f_c, with f_c the contact
-    // force on the ball and V its volume (area × unit thickness in 2D).
     std::vector<Eigen::Matrix3d> ball_stress() const;
-    double unbalanced_force_ratio() const;  // mean unbalanced / mean contact force
+    double unbalanced_force_ratio() const;
     std::size_t active_contacts() const;
-    // Normal (end 1 to end 2) and contact point of row k of a set at the
-    // last force pass: a packed set's are recomputed from the positions and
-    // the gap with the force pass's arithmetic (the same bits, as long as no
-    // ball moved since), any other set's are read from its columns.
+    // Row k of a set at the last force pass (forces/geometry.hpp row_*).
     Vec contact_normal(const ContactSet& s, std::size_t k) const { return row_normal(bodies, s, k); }
     Vec contact_point(const ContactSet& s, std::size_t k) const { return row_point(bodies, s, k); }
     double contact_gap(const ContactSet& s, std::size_t k) const { return row_gap(bodies, s, k); }
-    // The radius of row k's end 1 or end 2 (a wall's: 0), from the bodies:
-    // a packed set keeps no radius columns, and a ball's radius changes
-    // only with the scene, which rebuilds the lists (mark_dirty()).
     double end_radius(const ContactSet& s, std::size_t k, bool end2) const { return row_end_radius(bodies, s, k, end2); }
-    // A row's key (contacts/contact_keys.hpp): the ids of its two ends.
     ContactKey row_keys(const ContactSet& s, std::size_t k) const { return row_key(bodies, walls, s, k); }
-    std::uint64_t state_hash() const;       // FNV-1a over positions, velocities, spins
-    std::array<double, ph_count> phase_seconds{};
-    void set_skin(double skin) { neighbours_.skin = skin; }  // m; < 0: a quarter of the mean radius
+    std::uint64_t state_hash() const;
+    void set_skin(double skin) { neighbours_.skin = skin; }
     std::uint64_t rebuilds() const { return neighbours_.rebuilds; }
-    // After a change of the bodies, walls or models: lists, caches and the
-    // last good state are renewed (a snapshot never spans a change).
     void mark_dirty() { neighbours_.invalidate(); prepared_ = false; nominal_valid_ = false; last_good_.drop(); }
 
 private:

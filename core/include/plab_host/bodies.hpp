@@ -2,7 +2,7 @@
 // A body's index may change; its id never does (contacts are keyed by id).
 #pragma once
 
-#include "common/types.hpp"
+#include <plab_host/types.hpp>
 
 #include <map>
 #include <string>

@@ -4,7 +4,7 @@
 // point, so a gate can be lifted or a piston pushed.
 #pragma once
 
-#include "common/types.hpp"
+#include <plab_host/types.hpp>
 
 #include <string>
 #include <vector>
