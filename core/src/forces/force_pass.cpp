@@ -318,7 +318,7 @@ bool Cycle::reduce(double closing_kick) {
     double local_work = 0;
     for (double w : block_local_work_) local_work += w;
     energies.local_damping += local_work;
-    stiffness_.invalidate();
+    monitor_.stiffness.invalidate();
 
     for (Wall& w : walls.walls) { w.force.setZero(); w.moment.setZero(); }
     for (auto& inst : instances_) {
@@ -422,78 +422,8 @@ bool Cycle::rates_stage_needed(const ModelInstance& inst) const {
     return false;
 }
 
-// PFC's per-ball estimate; the reason names the model and group that set
-// it, so a diagnostic can say "2.1x the stable limit of model linear for
-// group grains". Strings are built once, for the winner only.
-StableStep Cycle::stable_timestep() {
-    sum_stiffness();
-    if (!nominal_valid_) { nominal_cache_ = nominal_timestep(); nominal_valid_ = true; }
-    StableStep best = nominal_cache_;
-    std::size_t ball = bodies.size();
-    bool rotation = false;
-    // per-ball stiffness sums exist once forces were computed (prepare())
-    const std::vector<double>&k_trans = stiffness_.translational(), &k_rot = stiffness_.rotational();
-    const std::size_t summed = std::min(bodies.size(), k_trans.size());
-    for (std::size_t i = 0; i < summed; ++i) {
-        if (k_trans[i] > 0) {
-            const double dt = std::sqrt(bodies.mass[i] / k_trans[i]);
-            if (dt < best.critical) { best.critical = dt; ball = i; rotation = false; }
-        }
-        if (k_rot[i] > 0) {
-            const double dt = std::sqrt(bodies.inertia[i] / k_rot[i]);
-            if (dt < best.critical) { best.critical = dt; ball = i; rotation = true; }
-        }
-    }
-    const ModelInstance* limit_model = nullptr;
-    const ContactSet* limit_set = nullptr;
-    std::size_t limit_row = 0;
-    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
-        const ContactSet* s = sets_[si];
-        auto consider = [&](double dt, std::size_t k) {
-            if (!(dt < best.critical)) return;
-            best.critical = dt;
-            limit_model = set_owner_[si]; limit_set = s; limit_row = k;
-            ball = bodies.size();
-        };
-        if (packed_.has_limits(si)) {  // (their rows are active)
-            for (const BatchLimit& b : packed_.limits(si)) consider(b.dt, b.row);
-            continue;
-        }
-        if (s->dt_limit.empty()) continue;  // a set that keeps no step limit has none (ContactSet::keeps)
-        for (std::size_t k = 0; k < s->size(); ++k)
-            if (s->active[k]) consider(s->dt_limit[k], k);
-    }
-    if (limit_model) {
-        best.limited_by = "model " + limit_model->model + " for groups " + contact_groups(*limit_set, limit_row) +
-                          ": its step limit";
-    } else if (ball < bodies.size()) {
-        best.limited_by = "model " + stiffest_model(ball) + " for group " + assignment_.group_name(bodies.group[ball]) + ": " +
-                          (rotation ? "rotation" : "translation") + " of ball id " + std::to_string(bodies.id[ball]) +
-                          (rotation ? " (sqrt(I/sum k_r))" : " (sqrt(m/sum k))");
-    }
-    return best;
-}
 
-// "grains-walls": the groups of a contact's two ends.
-std::string Cycle::contact_groups(const ContactSet& s, std::size_t k) const {
-    const int g2 = s.with_wall ? walls.walls[walls.facets[s.end2[k]].wall].group : bodies.group[s.end2[k]];
-    return assignment_.group_name(bodies.group[s.end1[k]]) + "-" + assignment_.group_name(g2);
-}
 
-// The model that gives ball i most of its stiffness.
-std::string Cycle::stiffest_model(std::size_t i) const {
-    std::vector<double> k_of(instances_.size(), 0.0);
-    if (body_contacts_.built_for(bodies.size()))
-        for (const BodyContact& en : body_contacts_.of(i)) {
-            const ContactSet& s = *sets_[en.set];
-            const std::uint32_t k = en.row();
-            if (!s.active[k]) continue;
-            for (std::size_t m = 0; m < instances_.size(); ++m)
-                if (set_owner_[en.set] == instances_[m].get()) k_of[m] += s.k_t_at(k);
-        }
-    const auto top = std::max_element(k_of.begin(), k_of.end());
-    return top == k_of.end() || *top <= 0 ? std::string("(none)") : instances_[std::size_t(top - k_of.begin())]->model;
-}
 
 } // namespace plab
 

@@ -494,9 +494,9 @@ void WorldCheckpoint::save_detection(const Cycle& w, CheckpointWriter& out) {
     out.u8(w.prepared_);
     out.vecs(w.neighbours_.position_at_build());
     out.f64(w.neighbours_.wall_motion());
-    w.sum_stiffness();
-    out.column(w.stiffness_.translational());
-    out.column(w.stiffness_.rotational());
+    const StiffnessSums& k = w.monitor_.summed_stiffness();
+    out.column(k.translational());
+    out.column(k.rotational());
     out.column(w.pass_contacts_.end1_column());
     out.column(w.pass_contacts_.end2_column());
     out.column(w.pass_contacts_.wall_column());
@@ -546,7 +546,7 @@ void WorldCheckpoint::save_log(const Cycle& w, CheckpointWriter& out) {
     // the detector compares the energy balance with the one at the last
     // change of the scene: without it a restart would see a jump (issue 7)
     out.section("stability");
-    const auto& b = w.detector_.baseline;
+    const auto& b = w.monitor_.detector.baseline;
     for (double v : {b.balance, b.body, b.boundary, b.dissipated, b.stored, b.potential, b.max_work}) out.f64(v);
     out.vec(b.lo);
     out.vec(b.hi);
@@ -643,13 +643,13 @@ void WorldCheckpoint::load_detection(Cycle& w, CheckpointReader& in) {
     w.neighbours_.restore(std::move(lists));
     std::vector<double> k_trans = in.column<double>();
     std::vector<double> k_rot = in.column<double>();
-    w.stiffness_.restore(std::move(k_trans), std::move(k_rot));
+    w.monitor_.stiffness.restore(std::move(k_trans), std::move(k_rot));
     w.pass_contacts_.end1_column() = in.column<std::int32_t>();
     w.pass_contacts_.end2_column() = in.column<std::int32_t>();
     w.pass_contacts_.wall_column() = in.column<std::uint8_t>();
     if (reference_missing)
         in.fail("the neighbour-list reference positions do not match the bodies");
-    if (w.prepared_ && (w.stiffness_.translational().size() != w.bodies.size() || w.stiffness_.rotational().size() != w.bodies.size()))
+    if (w.prepared_ && (w.monitor_.stiffness.translational().size() != w.bodies.size() || w.monitor_.stiffness.rotational().size() != w.bodies.size()))
         in.fail("the stiffness sums do not match the bodies");
 }
 
@@ -697,11 +697,11 @@ void WorldCheckpoint::load_log(Cycle& w, CheckpointReader& in) {
     if (in.u64() != 0) in.fail("it holds random-number generator states this build has no use for");
 
     if (in.format() < 2) {  // no detector baseline saved: measure it at this state
-        w.detector_.measure_baseline(w.energies, w.bodies, w.walls, w.gravity);
+        w.monitor_.detector.measure_baseline(w.energies, w.bodies, w.walls, w.gravity);
         return;
     }
     in.section("stability");
-    auto& b = w.detector_.baseline;
+    auto& b = w.monitor_.detector.baseline;
     for (double* v : {&b.balance, &b.body, &b.boundary, &b.dissipated, &b.stored, &b.potential, &b.max_work})
         *v = in.f64();
     b.lo = in.vec();
@@ -733,7 +733,7 @@ void WorldCheckpoint::load(Cycle& w, CheckpointReader& in) {
     load_passes(w, in);
     load_log(w, in);
 
-    w.nominal_valid_ = false;  // recomputed from the state, as the uninterrupted run did
+    w.monitor_.forget_nominal();  // recomputed from the state, as the uninterrupted run did
     w.last_good_.drop();
     // radii and masses of the ends from the bodies, whatever the file holds
     // (files written before they were kept for inactive rows lack them)

@@ -2,7 +2,7 @@
 // box) the automatic step must still be safe, so each assigned group pair is
 // asked, through one synthetic touching contact between its lightest balls,
 // what stiffness or step limit it will bring.
-#include "world/cycle.hpp"
+#include "monitor/monitor.hpp"
 
 #include <plab_host/errors.hpp>
 
@@ -112,30 +112,30 @@ StableStep probe_contact(const ModelInstance& inst, int dim, const Probe& a, con
 
 } // namespace
 
-StableStep Cycle::nominal_timestep() {
-    const int ng = assignment_.group_count();
+StableStep Monitor::nominal_timestep() const {
+    const int ng = in_.groups.group_count();
     std::vector<Probe> lightest(ng);
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        Probe& p = lightest[bodies.group[i]];
-        if (!p.any || bodies.mass[i] < p.mass) p = {bodies.mass[i], bodies.radius[i], bodies.inertia[i], true};
+    for (std::size_t i = 0; i < in_.bodies.size(); ++i) {
+        Probe& p = lightest[in_.bodies.group[i]];
+        if (!p.any || in_.bodies.mass[i] < p.mass) p = {in_.bodies.mass[i], in_.bodies.radius[i], in_.bodies.inertia[i], true};
     }
     std::vector<bool> wall_group(ng, false);
-    for (const Wall& w : walls.walls) wall_group[w.group] = true;
+    for (const Wall& w : in_.walls.walls) wall_group[w.group] = true;
     StableStep best;
     for (int a = 0; a < ng; ++a)
         for (int b = a; b < ng; ++b) {
-            const int inst = assignment_.assigned(a, b);
+            const int inst = in_.groups.assigned(a, b);
             if (inst < 0) continue;
             for (int side = 0; side < 2; ++side) {
                 const int ball_g = side ? b : a, other = side ? a : b;
                 if (!lightest[ball_g].any) continue;
                 StableStep s;
-                if (lightest[other].any) s = probe_contact(*instances_[inst], dim, lightest[ball_g], lightest[other], false);
-                else if (wall_group[other]) s = probe_contact(*instances_[inst], dim, lightest[ball_g], Probe{}, true);
+                if (lightest[other].any) s = probe_contact(*in_.instances[inst], in_.dim, lightest[ball_g], lightest[other], false);
+                else if (wall_group[other]) s = probe_contact(*in_.instances[inst], in_.dim, lightest[ball_g], Probe{}, true);
                 else continue;
                 if (s.critical < best.critical) {
                     best = s;
-                    best.limited_by.insert(best.limited_by.find(':'), " for groups " + assignment_.group_name(ball_g) + "-" + assignment_.group_name(other));
+                    best.limited_by.insert(best.limited_by.find(':'), " for groups " + in_.groups.group_name(ball_g) + "-" + in_.groups.group_name(other));
                 }
             }
         }

@@ -33,7 +33,9 @@ Cycle::Cycle(World& w, std::shared_ptr<PluginHost> host)
       fixed_dt(w.fixed_dt), safety_factor(w.safety_factor), time(w.time), step_count(w.step_count), last_dt(w.last_dt),
       contact_forces_wanted(w.contact_forces_wanted), bond_breaks(w.bond_breaks), snapshot_interval(w.snapshot_interval),
       lean_rebuild_rows(w.lean_rebuild_rows), on_snapshot(w.on_snapshot), stopped(w.stopped), energies(w.energies),
-      phase_seconds(w.phase_seconds), host_(std::move(host)) {}
+      phase_seconds(w.phase_seconds), host_(std::move(host)),
+      monitor_({dim, bodies, walls, assignment_, instances_, sets_, set_owner_, body_contacts_, packed_, energies, parallel_min},
+               step_count, time, last_dt, stopped) {}
 
 Cycle::~Cycle() {
     for (auto& inst : instances_)
@@ -136,7 +138,7 @@ void Cycle::run_passes(std::uint32_t phase) {
         v.diagnostic = diagnostic;
         v.diagnostic_capacity = sizeof diagnostic;
         const int rc = p.desc->run(p.state, p.props.data(), &v);
-        if (rc == PLAB_PASS_UNSTABLE) stop(pass_diagnostic(p.desc->name, diagnostic));
+        if (rc == PLAB_PASS_UNSTABLE) monitor_.stop(monitor_.pass_diagnostic(p.desc->name, diagnostic));
         if (rc != 0)
             throw RunError(std::string("pass '") + p.desc->name + "' failed at step " + std::to_string(step_count));
     }
@@ -145,7 +147,7 @@ void Cycle::run_passes(std::uint32_t phase) {
 void Cycle::prepare() {
     bodies.trim();  // the scene is built: no more room for bodies than bodies
     fields.resize(bodies.size());
-    stiffness_.clear(bodies.size());
+    monitor_.stiffness.clear(bodies.size());
     neighbours_.invalidate();
     {
         PhaseTimer t{phase_seconds[ph_detection]};
@@ -162,7 +164,7 @@ void Cycle::prepare() {
     sum_energies(0.0);  // states (kinetic, strain) at this instant; no flow
     last_dt = dt;
     prepared_ = true;
-    detector_.measure_baseline(energies, bodies, walls, gravity);
+    monitor_.detector.measure_baseline(energies, bodies, walls, gravity);
     stopped = Diagnostic{};  // a run that goes on after a stop is running again
 }
 
@@ -190,7 +192,7 @@ void Cycle::step() {
 void Cycle::take_snapshot() {
     if (!prepared_) prepare();
     last_good_.keep(bodies, walls, fields, energies, {time, last_dt, step_count}, bond_breaks.size(), instances_);
-    snapshot_stable_ = stable_timestep();
+    monitor_.keep_snapshot_step();
     if (on_snapshot) on_snapshot();
 }
 
@@ -216,7 +218,7 @@ void Cycle::advance() {
     double dt;
     {
         PhaseTimer t{phase_seconds[ph_timestep]};
-        dt = fixed_dt > 0 ? fixed_dt : safety_factor * stable_timestep().critical;
+        dt = fixed_dt > 0 ? fixed_dt : safety_factor * monitor_.stable_timestep().critical;
         if (!std::isfinite(dt) || dt <= 0)
             throw RunError("no stable timestep: no contact model reports a stiffness or step limit; set a fixed "
                            "timestep (timestep.fixed)");
@@ -247,7 +249,7 @@ void Cycle::advance() {
     }
     {
         PhaseTimer t{phase_seconds[ph_stability]};
-        detect_instability();
+        monitor_.detect_instability();
     }
 }
 
@@ -311,7 +313,7 @@ void Cycle::force_pass(double closing_kick) {
     }
     {
         PhaseTimer t{phase_seconds[ph_reduction]};
-        if (reduce(closing_kick)) check_finite();
+        if (reduce(closing_kick)) monitor_.check_finite();
     }
     {
         PhaseTimer t{phase_seconds[ph_post_force]};
@@ -324,8 +326,8 @@ void Cycle::force_pass(double closing_kick) {
 DriftInputs Cycle::drift_inputs() const {
     DriftInputs in;
     in.gravity = gravity;
-    in.lo = detector_.baseline.lo;
-    in.hi = detector_.baseline.hi;
+    in.lo = monitor_.detector.baseline.lo;
+    in.hi = monitor_.detector.baseline.hi;
     in.position_at_build = &neighbours_.position_at_build();
     const int cx = fields.index(PLAB_DRIFT_CORRECTION_X), cy = fields.index(PLAB_DRIFT_CORRECTION_Y),
               cz = fields.index(PLAB_DRIFT_CORRECTION_Z);
@@ -335,7 +337,7 @@ DriftInputs Cycle::drift_inputs() const {
 
 void Cycle::take_drift(const DriftResult& r) {
     energies.body += r.body_work;
-    left_domain_ = r.left_domain;
+    monitor_.set_left_domain(r.left_domain);
     neighbours_.bodies_moved(r.max_drift2);
 }
 
@@ -353,42 +355,7 @@ void Cycle::kick_and_drift(double dt) {
     take_drift(leapfrog_.kick_and_drift(bodies, in, dt, parallel_min));
 }
 
-// For a plug-in author: the model and contact whose output went non-finite.
-std::string Cycle::non_finite_contact(std::size_t body) const {
-    for (const auto& inst : instances_)
-        for (const ContactSet* set : {&inst->balls, &inst->walls})
-            for (std::size_t k = 0; k < set->size(); ++k) {
-                if (!set->active[k] || (std::size_t(set->end1[k]) != body && (set->with_wall || std::size_t(set->end2[k]) != body)))
-                    continue;
-                const Vec f(&set->force[3 * k]), m1 = set->moment1_at(k), m2 = set->moment2_at(k);
-                if (f.allFinite() && m1.allFinite() && m2.allFinite()) continue;
-                std::ostringstream s;
-                s << "contact model '" << inst->model << "' returned a non-finite force or moment (a contact model returned NaN) for the contact of ball id "
-                  << bodies.id[set->end1[k]] << (set->with_wall ? " with a wall" : " and ball id " + std::to_string(bodies.id[set->end2[k]]))
-                  << " at gap " << contact_gap(*set, k) << " m: check its law for division by zero, sqrt or log of a negative "
-                  << "number, or use of history before it is set";
-                return s.str();
-            }
-    return "";
-}
 
-void Cycle::check_finite() {
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        if (bodies.position[i].allFinite() && bodies.force[i].allFinite() && bodies.moment[i].allFinite() &&
-            bodies.velocity[i].allFinite())
-            continue;
-        std::ostringstream s;
-        s << "position " << bodies.position[i].transpose() << ", force " << bodies.force[i].transpose();
-        Diagnostic d;
-        d.quantity = "non-finite state";
-        d.subject = "ball id " + std::to_string(bodies.id[i]) + " (group " + assignment_.group_name(bodies.group[i]) + ")";
-        d.detail = s.str();
-        // for a plug-in author: the model and contact whose output went non-finite
-        const std::string culprit = non_finite_contact(i);
-        d.cause = culprit.empty() ? "a contact model returned NaN or Inf (or a pass did), or the state overflowed" : culprit;
-        stop(d);
-    }
-}
 
 // Energy flows over the step just taken; states (kinetic, strain) are
 // recomputed at the synchronised velocities.

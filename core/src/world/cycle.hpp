@@ -21,6 +21,7 @@
 #include "forces/still_instances.hpp"
 #include "integration/leapfrog.hpp"
 #include "monitor/last_good.hpp"
+#include "monitor/monitor.hpp"
 #include "monitor/stability.hpp"
 #include "monitor/stiffness_sums.hpp"
 #include "reduction/chunked_sums.hpp"
@@ -92,15 +93,15 @@ public:
     }
     bool field_computed(int f) const;
     void add_pass(const std::string& name, std::vector<double> props);
-    StableStep stable_timestep();
-    StableStep nominal_timestep();
+    StableStep stable_timestep() { return monitor_.stable_timestep(); }
+    StableStep nominal_timestep() const { return monitor_.nominal_timestep(); }
     void step();
     void prepare();
     bool contact_forces_current() const { return contact_forces_kept_; }
     std::size_t bond(int group_a, int group_b, double gap_tolerance);
     std::size_t intact_bonds() const;
     bool at_last_good() const { return at_last_good_; }
-    StabilityLimits& stability_limits() { return detector_.limits; }
+    StabilityLimits& stability_limits() { return monitor_.detector.limits; }
     std::vector<Eigen::Matrix3d> ball_stress() const;
     double unbalanced_force_ratio() const;
     std::size_t active_contacts() const;
@@ -113,7 +114,7 @@ public:
     std::uint64_t state_hash() const;
     void set_skin(double skin) { neighbours_.skin = skin; }
     std::uint64_t rebuilds() const { return neighbours_.rebuilds; }
-    void mark_dirty() { neighbours_.invalidate(); prepared_ = false; nominal_valid_ = false; last_good_.drop(); }
+    void mark_dirty() { neighbours_.invalidate(); prepared_ = false; monitor_.forget_nominal(); last_good_.drop(); }
 
 private:
     friend struct WorldCheckpoint;  // checkpoint.cpp saves and restores the private state below
@@ -125,8 +126,6 @@ private:
 
     // detection state
     bool prepared_ = false;
-    bool nominal_valid_ = false;
-    StableStep nominal_cache_;
     NeighbourLists neighbours_;
     std::vector<TableBuffers> table_buffers_;  // per set, in sets_' order
     // per-body lists of contact rows, for the sums taken body by body
@@ -148,25 +147,12 @@ private:
     void scatter_to_chunks(std::uint32_t set_index);
     void force_sweep(std::uint32_t set_index, bool with_geometry);
     StillInstances still_;  // instances of fixed balls only (forces/still_instances.hpp)
-    // per-body stiffness sums of the last force pass, summed on demand
-    mutable StiffnessSums stiffness_;  // (monitor/stiffness_sums.hpp)
-    void sum_stiffness() const { stiffness_.sum(bodies, body_contacts_, sets_, parallel_min); }
     PassContacts pass_contacts_;  // the active contacts the passes see (only when a pass is loaded)
 
     LastGoodState last_good_;  // (monitor/last_good.hpp)
     bool at_last_good_ = false;
-    StableStep snapshot_stable_;  // stable step at the last good state, for the likely cause
-    InstabilityDetector detector_;
-    bool left_domain_ = false;  // a position left the domain or is not finite (the leapfrog's drift)
-    void detect_instability();
-    void check_overlaps();
-    void overlap_stop(const ModelInstance& inst, const ContactSet& s);
-    std::string contact_name(const ModelInstance& inst, const ContactSet& s, std::size_t k) const;
-    std::string timestep_assessment() const;
-    std::string contact_groups(const ContactSet& s, std::size_t k) const;
-    std::string stiffest_model(std::size_t ball) const;
-    [[noreturn]] void stop(Diagnostic d);
-    Diagnostic pass_diagnostic(const std::string& pass, const std::string& message) const;
+    // the stable step, the detector, the stop (monitor/monitor.hpp)
+    Monitor monitor_;
     void take_snapshot();
     void restore_snapshot();
     void advance();
@@ -222,8 +208,6 @@ private:
     DriftInputs drift_inputs() const;
     void kick_and_drift(double dt);
     void take_drift(const DriftResult& r);
-    void check_finite();
-    std::string non_finite_contact(std::size_t body) const;
     void sum_energies(double dt);
 };
 
