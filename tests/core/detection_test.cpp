@@ -46,7 +46,7 @@ TEST_CASE("the cell list with a skin finds every overlapping pair, every step", 
             w.step();
             if (s % 25) continue;
             std::size_t active = 0;
-            for (std::uint8_t a : w.cycle->instances()[0]->balls.active) active += a;
+            for (std::uint8_t a : w.cycle->instances[0]->balls.active) active += a;
             INFO("dim " << dim << " step " << s);
             REQUIRE(active == brute_force_overlaps(w));
             max_contacts = std::max(max_contacts, active);
@@ -62,7 +62,7 @@ TEST_CASE("shear-force history survives a neighbour-list rebuild", "[detection]"
     sim.set_quiet(true);
     World& w = sim.world();
     sim.cycle(2000);
-    const ContactSet& s = w.cycle->instances()[0]->balls;
+    const ContactSet& s = w.cycle->instances[0]->balls;
     std::map<std::pair<BodyId, BodyId>, double> before;
     for (std::size_t k = 0; k < s.size(); ++k)
         if (s.active[k]) before[w.cycle->row_keys(s, k)] = s.history[3 * k] + 2 * s.history[3 * k + 1];
@@ -87,8 +87,8 @@ TEST_CASE("the null model and unassigned group pairs create no contacts", "[dete
     Simulation sim(scene);
     sim.set_quiet(true);
     sim.cycle(500);
-    CHECK(sim.world().cycle->instances()[0]->balls.size() == 0);  // no candidate pairs at all: no cost
-    CHECK(sim.world().cycle->instances()[0]->walls.size() > 0);   // walls still assigned by "*"
+    CHECK(sim.world().cycle->instances[0]->balls.size() == 0);  // no candidate pairs at all: no cost
+    CHECK(sim.world().cycle->instances[0]->walls.size() > 0);   // walls still assigned by "*"
 }
 
 TEST_CASE("the coordination-number pass counts the contacts of each ball", "[detection][pass]") {
@@ -109,10 +109,10 @@ TEST_CASE("the coordination-number pass counts the contacts of each ball", "[det
     const int field = w.fields.index("coordination_number");
     REQUIRE(field >= 0);
     std::vector<double> expected(w.bodies.size(), 0.0);
-    const ContactSet& s = w.cycle->instances()[0]->balls;
+    const ContactSet& s = w.cycle->instances[0]->balls;
     for (std::size_t k = 0; k < s.size(); ++k)
         if (s.active[k]) { expected[s.end1[k]] += 1; expected[s.end2[k]] += 1; }
-    const ContactSet& walls = w.cycle->instances()[0]->walls;
+    const ContactSet& walls = w.cycle->instances[0]->walls;
     for (std::size_t k = 0; k < walls.size(); ++k)
         if (walls.active[k]) expected[walls.end1[k]] += 1;
     CHECK(w.fields.column(field) == expected);
@@ -138,14 +138,14 @@ TEST_CASE("a contact model reads body fields and accumulates into them through i
     for (std::size_t i = 0; i < w.bodies.size(); ++i) w.fields.column(value)[i] = double(i);
     sim.cycle(1);
     std::vector<double> expected(w.bodies.size(), 0.0);
-    const ContactSet& s = w.cycle->instances()[0]->balls;
+    const ContactSet& s = w.cycle->instances[0]->balls;
     for (std::size_t k = 0; k < s.size(); ++k)
         if (s.active[k]) {
             expected[s.end1[k]] += s.end2[k];
             expected[s.end2[k]] += s.end1[k];
         }
     // a ball touching a wall gets NaN: reading a wall end's body field is loud, not silently wrong
-    const ContactSet& wl = w.cycle->instances()[0]->walls;
+    const ContactSet& wl = w.cycle->instances[0]->walls;
     for (std::size_t k = 0; k < wl.size(); ++k)
         if (wl.active[k]) expected[wl.end1[k]] = std::nan("");
     for (std::size_t i = 0; i < expected.size(); ++i) {
@@ -174,7 +174,7 @@ TEST_CASE("the batch says which read fields hold their default, and says it no l
     };
     const auto touching = [&] {
         std::size_t n = 0;
-        for (const ContactSet* s : {&w.cycle->instances()[0]->balls, &w.cycle->instances()[0]->walls})
+        for (const ContactSet* s : {&w.cycle->instances[0]->balls, &w.cycle->instances[0]->walls})
             for (std::size_t k = 0; k < s->size(); ++k) n += s->active[k] != 0;
         return double(n);
     };

@@ -115,7 +115,7 @@ namespace {
 // Breaks the bond between bodies i and j by hand, as the host does when a
 // model breaks it: the row unbonded and the break logged at `time`.
 void break_bond(World& w, std::size_t i, std::size_t j, double time) {
-    for (const auto& inst : w.cycle->instances()) {  // (inside the kernel: a host has no write access to contacts)
+    for (const auto& inst : w.cycle->instances) {  // (inside the kernel: a host has no write access to contacts)
         const int slot = inst->desc->persist_slot;
         if (slot < 0) continue;
         ContactSet& c = inst->balls;

@@ -22,19 +22,19 @@ bool on_centre_path(const ModelInstance& inst) {
 } // namespace
 
 void Cycle::mark_ball_rows_in_range() {
-    const bool list = !passes_.empty();
-    if (list) pass_contacts_.start();
+    const bool list = !passes.empty();
+    if (list) pass_contacts.start();
     in_range_.resize(sets_.size());
     for (std::uint32_t si = 0; si < sets_.size(); ++si) {
         ContactSet& s = *sets_[si];
         in_range_[si].listed = false;
         if (s.with_wall) {  // the geometry set their flags
-            if (list) pass_contacts_.append_active_wall_rows(s);
+            if (list) pass_contacts.append_active_wall_rows(s);
             continue;
         }
         mark_set_in_range(si, list);
     }
-    if (list) pass_contacts_.finish();
+    if (list) pass_contacts.finish();
     in_range_marked_ = true;
 }
 
@@ -60,7 +60,7 @@ void Cycle::mark_set_in_range(std::uint32_t si, bool list) {
                                                    distances ? r.distance.data() + k0 : nullptr));
     }
     r.listed = centre;
-    if (list) pass_contacts_.append_in_range(*sets_[si], r, parallel_min);
+    if (list) pass_contacts.append_in_range(*sets_[si], r, parallel_min);
 }
 
 } // namespace plab

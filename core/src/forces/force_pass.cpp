@@ -96,7 +96,7 @@ void Cycle::model_failed(const ModelInstance& inst) const {
 // thread-count free.
 void Cycle::force_sweep(std::uint32_t si, bool with_geometry) {
     ContactSet& s = *sets_[si];
-    ModelInstance& inst = *instances_[si / 2];
+    ModelInstance& inst = *instances[si / 2];
     const std::size_t n = s.size();
     s.batch_energy.assign(kBatchEnergies * ((n + kContactBatch - 1) / kContactBatch), 0.0);
     if (n == 0) return;
@@ -112,7 +112,7 @@ void Cycle::force_sweep(std::uint32_t si, bool with_geometry) {
     // a still table (StillInstances) whose rows mark_ball_rows_in_range()
     // tested: nothing to pack, only its chunks' partial sums to clear
     const bool still = dense && at_centres && in_range_marked_ && si < in_range_.size() && in_range_[si].listed &&
-                       still_.centre_table_still(si, s, instances_);
+                       still_.centre_table_still(si, s, instances);
     if (still) hold_still(s);
     else s.forces_zero = false;
     int failed = 0;
@@ -295,7 +295,7 @@ bool Cycle::bodies_finite(std::size_t i0, std::size_t i1) {
 // blocks of bodies. True when a body's state may be non-finite.
 bool Cycle::reduce(double closing_kick) {
     const std::size_t n = bodies.size();
-    for (auto& inst : instances_)
+    for (auto& inst : instances)
         if (!inst->desc->rates_stage)
             for (int f : inst->fields_accumulated) std::fill(fields.column(f).begin(), fields.column(f).end(), 0.0);
     if (!swept_)  // force_sweep() summed the rows already
@@ -318,10 +318,10 @@ bool Cycle::reduce(double closing_kick) {
     double local_work = 0;
     for (double w : block_local_work_) local_work += w;
     energies.local_damping += local_work;
-    monitor_.stiffness.invalidate();
+    monitor.stiffness.invalidate();
 
     for (Wall& w : walls.walls) { w.force.setZero(); w.moment.setZero(); }
-    for (auto& inst : instances_) {
+    for (auto& inst : instances) {
         const ContactSet& s = inst->walls;
         for (std::size_t k = 0; k < s.size(); ++k) {
             if (!s.active[k]) continue;
@@ -339,7 +339,7 @@ bool Cycle::reduce(double closing_kick) {
 // phase RATES_DONE turn them into states before any force is computed.
 void Cycle::rates_stage() {
     bool any = false;
-    for (auto& inst : instances_) {
+    for (auto& inst : instances) {
         if (!inst->desc->rates_stage) continue;
         any = true;
         for (int f : inst->fields_accumulated) std::fill(fields.column(f).begin(), fields.column(f).end(), 0.0);
@@ -368,7 +368,7 @@ void Cycle::rates_stage() {
 // sum feeds nothing, and skipping it halves the model's calls.
 bool Cycle::field_computed(int f) const {
     bool skipped = true, filled_by_rates = false;  // the rates stage runs for all or none (step())
-    for (const auto& inst : instances_) {
+    for (const auto& inst : instances) {
         if (!inst->desc->rates_stage) continue;
         skipped &= !rates_stage_needed(*inst);
         const auto& acc = inst->fields_accumulated;
@@ -385,11 +385,11 @@ bool Cycle::field_computed(int f) const {
 void Cycle::find_fields_at_default() {
     std::vector<std::uint8_t>& at_default = field_at_default_;  // first the candidates (no allocation in the cycle)
     at_default.assign(fields.size(), 0);
-    for (const auto& inst : instances_)
+    for (const auto& inst : instances)
         for (int f : inst->fields_read) at_default[f] = 1;
-    for (const auto& inst : instances_)
+    for (const auto& inst : instances)
         for (int f : inst->fields_accumulated) at_default[f] = 0;
-    for (const PassInstance& p : passes_)
+    for (const PassInstance& p : passes)
         for (int f : p.fields) at_default[f] = 0;
     for (std::size_t f = 0; f < fields.size(); ++f) {
         if (!at_default[f]) continue;
@@ -413,9 +413,9 @@ ReadFields Cycle::read_fields(const ModelInstance& inst) const {
 
 bool Cycle::rates_stage_needed(const ModelInstance& inst) const {
     for (int f : inst.fields_accumulated) {
-        for (const PassInstance& p : passes_)
+        for (const PassInstance& p : passes)
             if (std::find(p.fields.begin(), p.fields.end(), f) != p.fields.end()) return true;
-        for (const auto& other : instances_)
+        for (const auto& other : instances)
             if (std::find(other->fields_read.begin(), other->fields_read.end(), f) != other->fields_read.end())
                 return true;
     }
@@ -431,7 +431,7 @@ namespace plab {
 
 std::vector<Eigen::Matrix3d> Cycle::ball_stress() const {
     std::vector<Eigen::Matrix3d> sigma(bodies.size(), Eigen::Matrix3d::Zero());
-    for (const auto& inst : instances_)
+    for (const auto& inst : instances)
         for (const ContactSet* s : {&inst->balls, &inst->walls})
             for (std::size_t k = 0; k < s->size(); ++k) {
                 if (!s->active[k]) continue;
@@ -452,9 +452,9 @@ std::vector<Eigen::Matrix3d> Cycle::ball_stress() const {
 }
 
 std::size_t Cycle::bond(int a, int b, double gap_tolerance) {
-    if (!prepared_) prepare();
+    if (!prepared) prepare();
     std::size_t made = 0;
-    for (auto& inst : instances_) {
+    for (auto& inst : instances) {
         const int slot = inst->desc->persist_slot;
         if (slot < 0) continue;
         ContactSet& s = inst->balls;
@@ -466,13 +466,13 @@ std::size_t Cycle::bond(int a, int b, double gap_tolerance) {
             ++made;
         }
     }
-    prepared_ = false;  // re-evaluate forces with the bonds in place
+    prepared = false;  // re-evaluate forces with the bonds in place
     return made;
 }
 
 std::size_t Cycle::intact_bonds() const {
     std::size_t n = 0;
-    for (const auto& inst : instances_) {
+    for (const auto& inst : instances) {
         const int slot = inst->desc->persist_slot;
         if (slot < 0) continue;
         for (const ContactSet* s : {&inst->balls, &inst->walls})

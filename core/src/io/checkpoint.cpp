@@ -1,10 +1,13 @@
-// Checkpoint file format and the Cycle's state in it (see checkpoint.hpp).
+// Checkpoint file format (plab_host/checkpoint.hpp) and the world in it:
+// the host's state and each subsystem's sections, in file order.
 // Everything a later step reads is saved as it is, derived columns included
 // (contact geometry, per-body stiffness sums, the contact list passes see,
 // the Verlet reference positions): recomputing them after a restart would
 // use whole-step velocities where the uninterrupted run used half-step ones,
 // and the answer would drift in the last bits.
-#include "io/checkpoint.hpp"
+#include <plab_host/checkpoint.hpp>
+
+#include "world/cycle.hpp"
 
 #include <cstdio>
 #include <cstring>
@@ -346,7 +349,7 @@ void load_walls(Walls& w, const Cycle& world, CheckpointReader& in) {
         const std::string name = in.str();
         if (name != x.name) in.fail("wall '" + name + "' where the scene has '" + x.name + "'");
         x.group = int(in.u64());
-        if (x.group < 0 || std::size_t(x.group) >= world.groups().group_names().size()) in.fail("wall '" + name + "' has an unknown group");
+        if (x.group < 0 || std::size_t(x.group) >= world.assignment.group_names().size()) in.fail("wall '" + name + "' has an unknown group");
         for (Vec* v : {&x.velocity, &x.angular_velocity, &x.centre, &x.force, &x.moment}) *v = in.vec();
         x.facets = in.column<int>();
     }
@@ -445,28 +448,26 @@ std::string slot_list(const plab_contact_model_desc& d) {
     return s.empty() ? "none" : s;
 }
 
-} // namespace
-
 // ---- the world ------------------------------------------------------------
 
-void WorldCheckpoint::save_scalars(const Cycle& w, CheckpointWriter& out) {
+void save_scalars(const Cycle& w, CheckpointWriter& out) {
     out.section("world");
     out.u32(std::uint32_t(w.dim));
     out.f64(w.time);
     out.u64(w.step_count);
     out.f64(w.last_dt);
     out.vec(w.gravity);
-    out.u64(w.neighbours_.rebuilds);
+    out.u64(w.neighbours.rebuilds);
     const Energies& e = w.energies;
     for (double v : {e.kinetic, e.strain, e.body, e.boundary, e.slip, e.dashpot, e.local_damping, e.bond_break}) out.f64(v);
 
     out.section("assignment");
-    out.u64(w.assignment_.group_names().size());
-    for (const auto& g : w.assignment_.group_names()) out.str(g);
-    out.column(w.assignment_.table());
+    out.u64(w.assignment.group_names().size());
+    for (const auto& g : w.assignment.group_names()) out.str(g);
+    out.column(w.assignment.table());
 }
 
-void WorldCheckpoint::save_fields(const Cycle& w, CheckpointWriter& out) {
+void save_fields(const Cycle& w, CheckpointWriter& out) {
     out.section("fields");
     out.u64(w.fields.size());
     for (std::size_t f = 0; f < w.fields.size(); ++f) {
@@ -475,10 +476,10 @@ void WorldCheckpoint::save_fields(const Cycle& w, CheckpointWriter& out) {
     }
 }
 
-void WorldCheckpoint::save_contacts(const Cycle& w, CheckpointWriter& out) {
+void save_contacts(const Cycle& w, CheckpointWriter& out) {
     out.section("contacts");
-    out.u64(w.instances_.size());
-    for (const auto& inst : w.instances_) {
+    out.u64(w.instances.size());
+    for (const auto& inst : w.instances) {
         out.str(inst->model);
         out.column(inst->props);
         out.u64(std::uint64_t(inst->stride));
@@ -488,27 +489,27 @@ void WorldCheckpoint::save_contacts(const Cycle& w, CheckpointWriter& out) {
     }
 }
 
-void WorldCheckpoint::save_detection(const Cycle& w, CheckpointWriter& out) {
+void save_detection(const Cycle& w, CheckpointWriter& out) {
     out.section("detection");
-    out.u8(w.neighbours_.invalidated());
-    out.u8(w.prepared_);
-    out.vecs(w.neighbours_.position_at_build());
-    out.f64(w.neighbours_.wall_motion());
-    const StiffnessSums& k = w.monitor_.summed_stiffness();
+    out.u8(w.neighbours.invalidated());
+    out.u8(w.prepared);
+    out.vecs(w.neighbours.position_at_build());
+    out.f64(w.neighbours.wall_motion());
+    const StiffnessSums& k = w.monitor.summed_stiffness();
     out.column(k.translational());
     out.column(k.rotational());
-    out.column(w.pass_contacts_.end1_column());
-    out.column(w.pass_contacts_.end2_column());
-    out.column(w.pass_contacts_.wall_column());
+    out.column(w.pass_contacts.end1_column());
+    out.column(w.pass_contacts.end2_column());
+    out.column(w.pass_contacts.wall_column());
 }
 
-void WorldCheckpoint::save_passes(const Cycle& w, CheckpointWriter& out) {
+void save_passes(const Cycle& w, CheckpointWriter& out) {
     out.section("passes");
-    out.u64(w.passes_.size());
-    for (const PassInstance& p : w.passes_) {
+    out.u64(w.passes.size());
+    for (const PassInstance& p : w.passes) {
         out.str(p.desc->name);
         out.column(p.props);
-        const plab_pass_state_hooks* hooks = w.host_->pass_state(p.desc->name);
+        const plab_pass_state_hooks* hooks = w.host->pass_state(p.desc->name);
         out.u8(hooks != nullptr);
         if (!hooks) continue;
         std::vector<unsigned char> buf(64);
@@ -518,14 +519,14 @@ void WorldCheckpoint::save_passes(const Cycle& w, CheckpointWriter& out) {
             need = hooks->save(p.state, buf.data(), buf.size());
         }
         if (need > buf.size() || need == 0)
-            throw CheckpointError(std::string("pass '") + p.desc->name + "' (" + w.host_->library_of_pass(p.desc->name) +
+            throw CheckpointError(std::string("pass '") + p.desc->name + "' (" + w.host->library_of_pass(p.desc->name) +
                                   ") failed to save its private state");
         buf.resize(need);
         out.column(buf);
     }
 }
 
-void WorldCheckpoint::save_log(const Cycle& w, CheckpointWriter& out) {
+void save_log(const Cycle& w, CheckpointWriter& out) {
     out.section("bond_breaks");
     out.u64(w.bond_breaks.size());
     for (const BondBreak& b : w.bond_breaks) {
@@ -546,13 +547,13 @@ void WorldCheckpoint::save_log(const Cycle& w, CheckpointWriter& out) {
     // the detector compares the energy balance with the one at the last
     // change of the scene: without it a restart would see a jump (issue 7)
     out.section("stability");
-    const auto& b = w.monitor_.detector.baseline;
+    const auto& b = w.monitor.detector.baseline;
     for (double v : {b.balance, b.body, b.boundary, b.dissipated, b.stored, b.potential, b.max_work}) out.f64(v);
     out.vec(b.lo);
     out.vec(b.hi);
 }
 
-void WorldCheckpoint::load_scalars(Cycle& w, CheckpointReader& in) {
+void load_scalars(Cycle& w, CheckpointReader& in) {
     in.section("world");
     const std::uint32_t dim = in.u32();
     if (int(dim) != w.dim) in.fail("a " + std::to_string(dim) + "D state for a " + std::to_string(w.dim) + "D scene");
@@ -560,7 +561,7 @@ void WorldCheckpoint::load_scalars(Cycle& w, CheckpointReader& in) {
     w.step_count = in.u64();
     w.last_dt = in.f64();
     w.gravity = in.vec();
-    w.neighbours_.rebuilds = in.u64();
+    w.neighbours.rebuilds = in.u64();
     Energies& e = w.energies;
     for (double* v : {&e.kinetic, &e.strain, &e.body, &e.boundary, &e.slip, &e.dashpot, &e.local_damping, &e.bond_break})
         *v = in.f64();
@@ -569,15 +570,15 @@ void WorldCheckpoint::load_scalars(Cycle& w, CheckpointReader& in) {
     const std::uint64_t n_groups = in.u64();
     std::vector<std::string> groups;
     for (std::uint64_t g = 0; g < n_groups; ++g) groups.push_back(in.str());
-    if (groups != w.assignment_.group_names()) in.fail("its groups differ from the scene's (the scene is not the one that wrote it)");
+    if (groups != w.assignment.group_names()) in.fail("its groups differ from the scene's (the scene is not the one that wrote it)");
     std::vector<int> cmat = in.column<int>();
-    if (cmat.size() != w.assignment_.table().size()) in.fail("the assignment table has the wrong size");
+    if (cmat.size() != w.assignment.table().size()) in.fail("the assignment table has the wrong size");
     for (int inst : cmat)
-        if (inst < -1 || inst >= int(w.instances_.size())) in.fail("the assignment table names model instance " + std::to_string(inst));
-    w.assignment_.set_table(std::move(cmat));
+        if (inst < -1 || inst >= int(w.instances.size())) in.fail("the assignment table names model instance " + std::to_string(inst));
+    w.assignment.set_table(std::move(cmat));
 }
 
-void WorldCheckpoint::load_fields(Cycle& w, CheckpointReader& in) {
+void load_fields(Cycle& w, CheckpointReader& in) {
     in.section("fields");
     const std::uint64_t n_fields = in.u64();
     std::vector<bool> seen(w.fields.size(), false);
@@ -594,13 +595,13 @@ void WorldCheckpoint::load_fields(Cycle& w, CheckpointReader& in) {
         if (!seen[f]) w.fields.column(int(f)).assign(w.bodies.size(), w.fields.default_value(int(f)));
 }
 
-void WorldCheckpoint::load_contacts(Cycle& w, CheckpointReader& in) {
+void load_contacts(Cycle& w, CheckpointReader& in) {
     in.section("contacts");
     const std::uint64_t n_inst = in.u64();
-    if (n_inst != w.instances_.size())
+    if (n_inst != w.instances.size())
         in.fail("it holds " + std::to_string(n_inst) + " contact-model instances, the scene makes " +
-                std::to_string(w.instances_.size()));
-    for (auto& inst : w.instances_) {
+                std::to_string(w.instances.size()));
+    for (auto& inst : w.instances) {
         const std::string model = in.str();
         if (model != inst->model) in.fail("model '" + model + "' where the scene has '" + inst->model + "'");
         in.column<double>();  // the properties it ran with; the scene's (with --set) apply from here on
@@ -613,7 +614,7 @@ void WorldCheckpoint::load_contacts(Cycle& w, CheckpointReader& in) {
                 if (slot == inst->desc->history[m].name) found = m;
             if (found < 0)
                 in.fail("history slot '" + slot + "' of model '" + model + "' is not declared by the loaded library " +
-                        w.host_->library_of_model(model) + " (its slots: " + slot_list(*inst->desc) +
+                        w.host->library_of_model(model) + " (its slots: " + slot_list(*inst->desc) +
                         "); the contact history it holds would be lost — restart with the plug-in that wrote it");
             slot_of_file.push_back(found);
         }
@@ -632,55 +633,55 @@ void WorldCheckpoint::load_contacts(Cycle& w, CheckpointReader& in) {
     }
 }
 
-void WorldCheckpoint::load_detection(Cycle& w, CheckpointReader& in) {
+void load_detection(Cycle& w, CheckpointReader& in) {
     in.section("detection");
     NeighbourLists::Saved lists;
     lists.invalidated = in.u8() != 0;
-    w.prepared_ = in.u8() != 0;
+    w.prepared = in.u8() != 0;
     lists.position_at_build = in.vecs();
     lists.wall_motion = in.f64();
     const bool reference_missing = !lists.invalidated && lists.position_at_build.size() != w.bodies.size();
-    w.neighbours_.restore(std::move(lists));
+    w.neighbours.restore(std::move(lists));
     std::vector<double> k_trans = in.column<double>();
     std::vector<double> k_rot = in.column<double>();
-    w.monitor_.stiffness.restore(std::move(k_trans), std::move(k_rot));
-    w.pass_contacts_.end1_column() = in.column<std::int32_t>();
-    w.pass_contacts_.end2_column() = in.column<std::int32_t>();
-    w.pass_contacts_.wall_column() = in.column<std::uint8_t>();
+    w.monitor.stiffness.restore(std::move(k_trans), std::move(k_rot));
+    w.pass_contacts.end1_column() = in.column<std::int32_t>();
+    w.pass_contacts.end2_column() = in.column<std::int32_t>();
+    w.pass_contacts.wall_column() = in.column<std::uint8_t>();
     if (reference_missing)
         in.fail("the neighbour-list reference positions do not match the bodies");
-    if (w.prepared_ && (w.monitor_.stiffness.translational().size() != w.bodies.size() || w.monitor_.stiffness.rotational().size() != w.bodies.size()))
+    if (w.prepared && (w.monitor.stiffness.translational().size() != w.bodies.size() || w.monitor.stiffness.rotational().size() != w.bodies.size()))
         in.fail("the stiffness sums do not match the bodies");
 }
 
-void WorldCheckpoint::load_passes(Cycle& w, CheckpointReader& in) {
+void load_passes(Cycle& w, CheckpointReader& in) {
     in.section("passes");
     const std::uint64_t n_passes = in.u64();
-    if (n_passes != w.passes_.size())
-        in.fail("it holds " + std::to_string(n_passes) + " passes, the scene runs " + std::to_string(w.passes_.size()));
-    for (PassInstance& p : w.passes_) {
+    if (n_passes != w.passes.size())
+        in.fail("it holds " + std::to_string(n_passes) + " passes, the scene runs " + std::to_string(w.passes.size()));
+    for (PassInstance& p : w.passes) {
         const std::string name = in.str();
         if (name != p.desc->name) in.fail("pass '" + name + "' where the scene has '" + p.desc->name + "'");
         in.column<double>();  // properties it ran with
         const bool has_state = in.u8() != 0;
-        const plab_pass_state_hooks* hooks = w.host_->pass_state(name);
+        const plab_pass_state_hooks* hooks = w.host->pass_state(name);
         if (!has_state) {
             if (hooks)
-                in.fail("pass '" + name + "' now keeps private state (" + w.host_->library_of_pass(name) +
+                in.fail("pass '" + name + "' now keeps private state (" + w.host->library_of_pass(name) +
                         ") but the file has none for it; it was written by an older build of that plug-in");
             continue;
         }
         const std::vector<unsigned char> bytes = in.column<unsigned char>();
         if (!hooks)
             in.fail("the file holds private state of pass '" + name + "' but the loaded library " +
-                    w.host_->library_of_pass(name) + " registers no state hooks for it (plab_pass_state_hooks)");
+                    w.host->library_of_pass(name) + " registers no state hooks for it (plab_pass_state_hooks)");
         if (hooks->load(p.state, bytes.data(), bytes.size()) != 0)
-            in.fail("pass '" + name + "' (" + w.host_->library_of_pass(name) + ") refused its saved state of " +
+            in.fail("pass '" + name + "' (" + w.host->library_of_pass(name) + ") refused its saved state of " +
                     std::to_string(bytes.size()) + " bytes (written by another version of the plug-in?)");
     }
 }
 
-void WorldCheckpoint::load_log(Cycle& w, CheckpointReader& in) {
+void load_log(Cycle& w, CheckpointReader& in) {
     in.section("bond_breaks");
     w.bond_breaks.resize(in.u64());
     for (BondBreak& b : w.bond_breaks) {
@@ -697,11 +698,11 @@ void WorldCheckpoint::load_log(Cycle& w, CheckpointReader& in) {
     if (in.u64() != 0) in.fail("it holds random-number generator states this build has no use for");
 
     if (in.format() < 2) {  // no detector baseline saved: measure it at this state
-        w.monitor_.detector.measure_baseline(w.energies, w.bodies, w.walls, w.gravity);
+        w.monitor.detector.measure_baseline(w.energies, w.bodies, w.walls, w.gravity);
         return;
     }
     in.section("stability");
-    auto& b = w.monitor_.detector.baseline;
+    auto& b = w.monitor.detector.baseline;
     for (double* v : {&b.balance, &b.body, &b.boundary, &b.dissipated, &b.stored, &b.potential, &b.max_work})
         *v = in.f64();
     b.lo = in.vec();
@@ -710,7 +711,7 @@ void WorldCheckpoint::load_log(Cycle& w, CheckpointReader& in) {
 
 // Sections in file order; bodies and walls come between the assignment
 // table and the fields.
-void WorldCheckpoint::save(const Cycle& w, CheckpointWriter& out) {
+void save_cycle(const Cycle& w, CheckpointWriter& out) {
     save_scalars(w, out);
     save_bodies(w.bodies, out);
     save_walls(w.walls, out);
@@ -721,11 +722,11 @@ void WorldCheckpoint::save(const Cycle& w, CheckpointWriter& out) {
     save_log(w, out);
 }
 
-void WorldCheckpoint::load(Cycle& w, CheckpointReader& in) {
+void load_cycle(Cycle& w, CheckpointReader& in) {
     load_scalars(w, in);
     load_bodies(w.bodies, in);
     for (int g : w.bodies.group)
-        if (g < 0 || g >= w.assignment_.group_count()) in.fail("a body has group index " + std::to_string(g));
+        if (g < 0 || g >= w.assignment.group_count()) in.fail("a body has group index " + std::to_string(g));
     load_walls(w.walls, w, in);
     load_fields(w, in);
     load_contacts(w, in);
@@ -733,16 +734,12 @@ void WorldCheckpoint::load(Cycle& w, CheckpointReader& in) {
     load_passes(w, in);
     load_log(w, in);
 
-    w.monitor_.forget_nominal();  // recomputed from the state, as the uninterrupted run did
-    w.last_good_.drop();
-    // radii and masses of the ends from the bodies, whatever the file holds
-    // (files written before they were kept for inactive rows lack them)
-    for (auto& inst : w.instances_)
-        for (ContactSet* s : {&inst->balls, &inst->walls}) w.fill_pair_constants(*s);
-    w.build_entries();
+    w.restored();
 }
 
-void save_world(const World& w, CheckpointWriter& out) { WorldCheckpoint::save(*w.cycle, out); }
-void load_world(World& w, CheckpointReader& in) { WorldCheckpoint::load(*w.cycle, in); }
+} // namespace
+
+void save_world(const World& w, CheckpointWriter& out) { save_cycle(*w.cycle, out); }
+void load_world(World& w, CheckpointReader& in) { load_cycle(*w.cycle, in); }
 
 } // namespace plab

@@ -28,24 +28,24 @@ struct PhaseTimer {
 };
 } // namespace
 
-Cycle::Cycle(World& w, std::shared_ptr<PluginHost> host)
+Cycle::Cycle(World& w, std::shared_ptr<PluginHost> plugins)
     : dim(w.dim), bodies(w.bodies), walls(w.walls), fields(w.fields), gravity(w.gravity), parallel_min(w.parallel_min),
       fixed_dt(w.fixed_dt), safety_factor(w.safety_factor), time(w.time), step_count(w.step_count), last_dt(w.last_dt),
       contact_forces_wanted(w.contact_forces_wanted), bond_breaks(w.bond_breaks), snapshot_interval(w.snapshot_interval),
       lean_rebuild_rows(w.lean_rebuild_rows), on_snapshot(w.on_snapshot), stopped(w.stopped), energies(w.energies),
-      phase_seconds(w.phase_seconds), host_(std::move(host)),
-      monitor_({dim, bodies, walls, assignment_, instances_, sets_, set_owner_, body_contacts_, packed_, energies, parallel_min},
+      phase_seconds(w.phase_seconds), host(std::move(plugins)),
+      monitor({dim, bodies, walls, assignment, instances, sets_, set_owner_, body_contacts_, packed_, energies, parallel_min},
                step_count, time, last_dt, stopped) {}
 
 Cycle::~Cycle() {
-    for (auto& inst : instances_)
+    for (auto& inst : instances)
         if (inst->desc->destroy && inst->state) inst->desc->destroy(inst->state);
-    for (auto& p : passes_)
+    for (auto& p : passes)
         if (p.desc->destroy && p.state) p.desc->destroy(p.state);
 }
 
 int Cycle::add_instance(const std::string& model, std::vector<double> props) {
-    const plab_contact_model_desc* d = host_->model(model);
+    const plab_contact_model_desc* d = host->model(model);
     if (!d) throw InputError("", "contact model '" + model + "' is not loaded");
     auto inst = std::make_unique<ModelInstance>();
     inst->model = model;
@@ -53,7 +53,7 @@ int Cycle::add_instance(const std::string& model, std::vector<double> props) {
     inst->props = std::move(props);
     inst->state = d->create ? d->create(inst->props.data()) : nullptr;
     if (d->create && !inst->state)
-        throw PluginError("contact model '" + model + "' (" + host_->library_of_model(model) +
+        throw PluginError("contact model '" + model + "' (" + host->library_of_model(model) +
                           ") failed to create an instance from its properties");
     inst->range = d->activity_range(inst->props.data());
     if (!std::isfinite(inst->range))
@@ -76,18 +76,18 @@ int Cycle::add_instance(const std::string& model, std::vector<double> props) {
         s->model_io = d->io;
         s->model_flags = d->flags;
     }
-    instances_.push_back(std::move(inst));
+    instances.push_back(std::move(inst));
     mark_dirty();
-    return int(instances_.size()) - 1;
+    return int(instances.size()) - 1;
 }
 
 void Cycle::assign(int a, int b, int instance) {
-    assignment_.assign(a, b, instance);
+    assignment.assign(a, b, instance);
     mark_dirty();
 }
 
 void Cycle::add_pass(const std::string& name, std::vector<double> props) {
-    const plab_pass_desc* d = host_->pass(name);
+    const plab_pass_desc* d = host->pass(name);
     if (!d) throw InputError("", "pass '" + name + "' is not loaded");
     PassInstance p;
     p.desc = d;
@@ -97,21 +97,21 @@ void Cycle::add_pass(const std::string& name, std::vector<double> props) {
     for (uint32_t f = 0; f < d->field_count; ++f)
         p.fields.push_back(register_field(d->fields[f].name, d->fields[f].default_value, d->fields[f].unit));
     // stable order: by phase, then stage, then order of addition
-    auto it = passes_.begin();
-    while (it != passes_.end() &&
+    auto it = passes.begin();
+    while (it != passes.end() &&
            (it->desc->phase < d->phase || (it->desc->phase == d->phase && it->desc->stage <= d->stage)))
         ++it;
-    passes_.insert(it, std::move(p));
+    passes.insert(it, std::move(p));
 }
 
 bool Cycle::has_passes(std::uint32_t phase) const {
-    return std::any_of(passes_.begin(), passes_.end(), [phase](const PassInstance& p) { return p.desc->phase == phase; });
+    return std::any_of(passes.begin(), passes.end(), [phase](const PassInstance& p) { return p.desc->phase == phase; });
 }
 
 void Cycle::run_passes(std::uint32_t phase) {
-    if (passes_.empty()) return;
+    if (passes.empty()) return;
     std::vector<double*> cols;
-    for (auto& p : passes_) {
+    for (auto& p : passes) {
         if (p.desc->phase != phase) continue;
         cols.clear();
         for (int f : p.fields) cols.push_back(fields.column(f).data());
@@ -127,18 +127,18 @@ void Cycle::run_passes(std::uint32_t phase) {
         v.mass = bodies.mass.data();
         v.group = bodies.group.data();
         v.fields = cols.data();
-        v.contact_count = uint32_t(pass_contacts_.size());
-        v.contact_end1 = pass_contacts_.end1();
-        v.contact_end2 = pass_contacts_.end2();
-        v.contact_end2_is_wall = pass_contacts_.end2_is_wall();
+        v.contact_count = uint32_t(pass_contacts.size());
+        v.contact_end1 = pass_contacts.end1();
+        v.contact_end2 = pass_contacts.end2();
+        v.contact_end2_is_wall = pass_contacts.end2_is_wall();
         // the distances hold at these positions while the range test's lists do
-        v.contact_distance = pass_contacts_.distance(in_range_marked_);
+        v.contact_distance = pass_contacts.distance(in_range_marked_);
         char diagnostic[2048];  // room for a pass's advice (sph_eos: ~800 characters)
         diagnostic[0] = '\0';
         v.diagnostic = diagnostic;
         v.diagnostic_capacity = sizeof diagnostic;
         const int rc = p.desc->run(p.state, p.props.data(), &v);
-        if (rc == PLAB_PASS_UNSTABLE) monitor_.stop(monitor_.pass_diagnostic(p.desc->name, diagnostic));
+        if (rc == PLAB_PASS_UNSTABLE) monitor.stop(monitor.pass_diagnostic(p.desc->name, diagnostic));
         if (rc != 0)
             throw RunError(std::string("pass '") + p.desc->name + "' failed at step " + std::to_string(step_count));
     }
@@ -147,8 +147,8 @@ void Cycle::run_passes(std::uint32_t phase) {
 void Cycle::prepare() {
     bodies.trim();  // the scene is built: no more room for bodies than bodies
     fields.resize(bodies.size());
-    monitor_.stiffness.clear(bodies.size());
-    neighbours_.invalidate();
+    monitor.stiffness.clear(bodies.size());
+    neighbours.invalidate();
     {
         PhaseTimer t{phase_seconds[ph_detection]};
         rebuild();
@@ -163,8 +163,8 @@ void Cycle::prepare() {
     leapfrog_.body_energies(bodies, 0.0);
     sum_energies(0.0);  // states (kinetic, strain) at this instant; no flow
     last_dt = dt;
-    prepared_ = true;
-    monitor_.detector.measure_baseline(energies, bodies, walls, gravity);
+    prepared = true;
+    monitor.detector.measure_baseline(energies, bodies, walls, gravity);
     stopped = Diagnostic{};  // a run that goes on after a stop is running again
 }
 
@@ -190,9 +190,9 @@ void Cycle::step() {
 }
 
 void Cycle::take_snapshot() {
-    if (!prepared_) prepare();
-    last_good_.keep(bodies, walls, fields, energies, {time, last_dt, step_count}, bond_breaks.size(), instances_);
-    monitor_.keep_snapshot_step();
+    if (!prepared) prepare();
+    last_good_.keep(bodies, walls, fields, energies, {time, last_dt, step_count}, bond_breaks.size(), instances);
+    monitor.keep_snapshot_step();
     if (on_snapshot) on_snapshot();
 }
 
@@ -203,7 +203,7 @@ void Cycle::take_snapshot() {
 void Cycle::restore_snapshot() {
     Clock clock;
     std::size_t breaks = 0;
-    last_good_.restore(bodies, walls, fields, energies, clock, breaks, instances_);
+    last_good_.restore(bodies, walls, fields, energies, clock, breaks, instances);
     time = clock.time;
     last_dt = clock.last_dt;
     step_count = clock.step_count;
@@ -214,11 +214,11 @@ void Cycle::restore_snapshot() {
 }
 
 void Cycle::advance() {
-    if (!prepared_) prepare();
+    if (!prepared) prepare();
     double dt;
     {
         PhaseTimer t{phase_seconds[ph_timestep]};
-        dt = fixed_dt > 0 ? fixed_dt : safety_factor * monitor_.stable_timestep().critical;
+        dt = fixed_dt > 0 ? fixed_dt : safety_factor * monitor.stable_timestep().critical;
         if (!std::isfinite(dt) || dt <= 0)
             throw RunError("no stable timestep: no contact model reports a stiffness or step limit; set a fixed "
                            "timestep (timestep.fixed)");
@@ -227,11 +227,11 @@ void Cycle::advance() {
     {
         PhaseTimer t{phase_seconds[ph_motion]};
         kick_and_drift(dt);
-        neighbours_.walls_moved(walls.move(dt, dim));
+        neighbours.walls_moved(walls.move(dt, dim));
     }
     {
         PhaseTimer t{phase_seconds[ph_detection]};
-        if (neighbours_.stale(bodies)) rebuild();
+        if (neighbours.stale(bodies)) rebuild();
     }
     time += dt;
     ++step_count;
@@ -249,7 +249,7 @@ void Cycle::advance() {
     }
     {
         PhaseTimer t{phase_seconds[ph_stability]};
-        monitor_.detect_instability();
+        monitor.detect_instability();
     }
 }
 
@@ -265,7 +265,7 @@ void Cycle::force_pass(double closing_kick) {
         // a pass added since the last rebuild may need a rates stage over
         // full columns that a packed set lacks (packs_balls)
         bool repacked = false;
-        for (auto& inst : instances_)
+        for (auto& inst : instances)
             if (inst->balls.packed != packs_balls(*inst)) {
                 lay_out_columns(*inst, inst->balls);
                 fill_pair_constants(inst->balls);
@@ -276,15 +276,15 @@ void Cycle::force_pass(double closing_kick) {
         // (geometry, model, scatter to slots); a rates stage needs all the
         // geometry before any force. A rates stage whose sums nothing reads
         // is skipped (rates_stage_needed).
-        still_.find(bodies, assignment_, instances_);
+        still_.find(bodies, assignment, instances);
         bool rates_models = false;
         swept_ = true;
-        for (auto& inst : instances_) {
+        for (auto& inst : instances) {
             rates_models |= inst->desc->rates_stage != 0;
             swept_ &= !(inst->desc->rates_stage && rates_stage_needed(*inst));
         }
         for (std::uint32_t si = 0; si < sets_.size(); ++si) {
-            ModelInstance& inst = *instances_[si / 2];
+            ModelInstance& inst = *instances[si / 2];
             ContactSet& s = *sets_[si];
             if (!s.with_wall && swept_) continue;  // geometry in the sweep
             geometry(inst, s);
@@ -299,13 +299,13 @@ void Cycle::force_pass(double closing_kick) {
             in_range_marked_ = false;
         } else if (swept_) {
             for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
-            if (!passes_.empty()) pass_contacts_.list_active(sets_);  // the sweeps set the active flags
+            if (!passes.empty()) pass_contacts.list_active(sets_);  // the sweeps set the active flags
         } else {
-            if (!passes_.empty()) pass_contacts_.list_active(sets_);
+            if (!passes.empty()) pass_contacts.list_active(sets_);
             rates_stage();
-            for (std::uint32_t m = 0; m < instances_.size(); ++m) {
-                ModelInstance& inst = *instances_[m];
-                if (still_.centre_table_still(2 * m, inst.balls, instances_)) hold_still(inst.balls);  // (as force_sweep)
+            for (std::uint32_t m = 0; m < instances.size(); ++m) {
+                ModelInstance& inst = *instances[m];
+                if (still_.centre_table_still(2 * m, inst.balls, instances)) hold_still(inst.balls);  // (as force_sweep)
                 else compute(inst, inst.balls, PLAB_STAGE_FORCES);
                 compute(inst, inst.walls, PLAB_STAGE_FORCES);
             }
@@ -313,7 +313,7 @@ void Cycle::force_pass(double closing_kick) {
     }
     {
         PhaseTimer t{phase_seconds[ph_reduction]};
-        if (reduce(closing_kick)) monitor_.check_finite();
+        if (reduce(closing_kick)) monitor.check_finite();
     }
     {
         PhaseTimer t{phase_seconds[ph_post_force]};
@@ -326,9 +326,9 @@ void Cycle::force_pass(double closing_kick) {
 DriftInputs Cycle::drift_inputs() const {
     DriftInputs in;
     in.gravity = gravity;
-    in.lo = monitor_.detector.baseline.lo;
-    in.hi = monitor_.detector.baseline.hi;
-    in.position_at_build = &neighbours_.position_at_build();
+    in.lo = monitor.detector.baseline.lo;
+    in.hi = monitor.detector.baseline.hi;
+    in.position_at_build = &neighbours.position_at_build();
     const int cx = fields.index(PLAB_DRIFT_CORRECTION_X), cy = fields.index(PLAB_DRIFT_CORRECTION_Y),
               cz = fields.index(PLAB_DRIFT_CORRECTION_Z);
     if (cx >= 0 && cy >= 0 && cz >= 0) in.correction = {fields.column(cx).data(), fields.column(cy).data(), fields.column(cz).data()};
@@ -337,8 +337,8 @@ DriftInputs Cycle::drift_inputs() const {
 
 void Cycle::take_drift(const DriftResult& r) {
     energies.body += r.body_work;
-    monitor_.set_left_domain(r.left_domain);
-    neighbours_.bodies_moved(r.max_drift2);
+    monitor.set_left_domain(r.left_domain);
+    neighbours.bodies_moved(r.max_drift2);
 }
 
 // The first half of a step's law of motion: half a kick, the PRE_DRIFT
@@ -394,7 +394,7 @@ double Cycle::unbalanced_force_ratio() const {
     }
     double contact = 0;
     std::size_t n = 0;
-    for (auto& inst : instances_)
+    for (auto& inst : instances)
         for (const ContactSet* s : {&inst->balls, &inst->walls})
             for (std::size_t k = 0; k < s->size(); ++k)
                 if (s->active[k]) {
@@ -408,7 +408,7 @@ double Cycle::unbalanced_force_ratio() const {
 
 std::size_t Cycle::active_contacts() const {
     std::size_t n = 0;
-    for (auto& inst : instances_)
+    for (auto& inst : instances)
         for (const ContactSet* s : {&inst->balls, &inst->walls})
             for (std::uint8_t a : s->active) n += a;
     return n;

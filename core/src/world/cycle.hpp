@@ -83,25 +83,22 @@ public:
     std::array<double, ph_count>& phase_seconds;
 
     // ---- what the World's functions of the same names do ----
-    AssignmentTable& groups() { return assignment_; }
-    const AssignmentTable& groups() const { return assignment_; }
     int add_instance(const std::string& model, std::vector<double> props);
     void assign(int group_a, int group_b, int instance);
-    const Instances& instances() const { return instances_; }
     int register_field(const std::string& name, double default_value, const char* unit = nullptr) {
         return fields.add(name, default_value, unit, bodies.size());
     }
     bool field_computed(int f) const;
     void add_pass(const std::string& name, std::vector<double> props);
-    StableStep stable_timestep() { return monitor_.stable_timestep(); }
-    StableStep nominal_timestep() const { return monitor_.nominal_timestep(); }
+    StableStep stable_timestep() { return monitor.stable_timestep(); }
+    StableStep nominal_timestep() const { return monitor.nominal_timestep(); }
     void step();
     void prepare();
     bool contact_forces_current() const { return contact_forces_kept_; }
     std::size_t bond(int group_a, int group_b, double gap_tolerance);
     std::size_t intact_bonds() const;
     bool at_last_good() const { return at_last_good_; }
-    StabilityLimits& stability_limits() { return monitor_.detector.limits; }
+    StabilityLimits& stability_limits() { return monitor.detector.limits; }
     std::vector<Eigen::Matrix3d> ball_stress() const;
     double unbalanced_force_ratio() const;
     std::size_t active_contacts() const;
@@ -112,21 +109,26 @@ public:
     double end_radius(const ContactSet& s, std::size_t k, bool end2) const { return row_end_radius(bodies, s, k, end2); }
     ContactKey row_keys(const ContactSet& s, std::size_t k) const { return row_key(bodies, walls, s, k); }
     std::uint64_t state_hash() const;
-    void set_skin(double skin) { neighbours_.skin = skin; }
-    std::uint64_t rebuilds() const { return neighbours_.rebuilds; }
-    void mark_dirty() { neighbours_.invalidate(); prepared_ = false; monitor_.forget_nominal(); last_good_.drop(); }
+    void set_skin(double skin) { neighbours.skin = skin; }
+    std::uint64_t rebuilds() const { return neighbours.rebuilds; }
+    void mark_dirty() { neighbours.invalidate(); prepared = false; monitor.forget_nominal(); last_good_.drop(); }
+    // Whether the ball–ball rows of a model go to it packed (force_sweep):
+    // no model of the world has a rates stage and this one accumulates no field.
+    bool packs_balls(const ModelInstance& inst) const;
+    // After a checkpoint replaced the state: the caches derived from it renewed.
+    void restored();
+
+    // ---- the kernel's subsystems, each its own header's ----
+    std::shared_ptr<PluginHost> host;  // (every world holds it: no model outlives its code)
+    AssignmentTable assignment;        // groups and PFC's assignment table (contacts/)
+    Instances instances;               // the contact-model instances with their tables (contacts/)
+    std::vector<PassInstance> passes;  // in the order they run
+    NeighbourLists neighbours;         // (detection/)
+    PassContacts pass_contacts;        // the active contacts the passes see (only when a pass is loaded)
+    bool prepared = false;             // forces are those of the current scene (prepare())
 
 private:
-    friend struct WorldCheckpoint;  // checkpoint.cpp saves and restores the private state below
-    std::shared_ptr<PluginHost> host_;
-    AssignmentTable assignment_;
-    std::vector<std::unique_ptr<ModelInstance>> instances_;
-    std::vector<PassInstance> passes_;
     std::vector<std::uint8_t> field_at_default_;  // per field, this force pass (find_fields_at_default)
-
-    // detection state
-    bool prepared_ = false;
-    NeighbourLists neighbours_;
     std::vector<TableBuffers> table_buffers_;  // per set, in sets_' order
     // per-body lists of contact rows, for the sums taken body by body
     BodyContacts body_contacts_;
@@ -147,12 +149,13 @@ private:
     void scatter_to_chunks(std::uint32_t set_index);
     void force_sweep(std::uint32_t set_index, bool with_geometry);
     StillInstances still_;  // instances of fixed balls only (forces/still_instances.hpp)
-    PassContacts pass_contacts_;  // the active contacts the passes see (only when a pass is loaded)
-
     LastGoodState last_good_;  // (monitor/last_good.hpp)
     bool at_last_good_ = false;
-    // the stable step, the detector, the stop (monitor/monitor.hpp)
-    Monitor monitor_;
+
+public:
+    Monitor monitor;  // the stable step, the detector, the stop (monitor/monitor.hpp; after its inputs)
+
+private:
     void take_snapshot();
     void restore_snapshot();
     void advance();
@@ -161,9 +164,6 @@ private:
     void install(const CarryContext& carry, ModelInstance& inst, ContactSet& set, PairList& pairs, TableBuffers& t);
     void build_entries();
     void fill_pair_constants(ContactSet& set) const;
-    // whether the ball–ball rows of a model go to it packed (force_sweep): no
-    // model of the world has a rates stage and this one accumulates no field
-    bool packs_balls(const ModelInstance& inst) const;
     void lay_out_columns(const ModelInstance& inst, ContactSet& set);
     void geometry(ModelInstance& inst, ContactSet& set);
     std::size_t range_test_rows(const ModelInstance& inst, std::uint32_t set_index, std::size_t begin,

@@ -24,7 +24,7 @@ void Cycle::lay_out_columns(const ModelInstance& inst, ContactSet& set) {
 // stage runs over full columns (force_pass(): swept_), and its model
 // accumulates nothing or only sums of a rates stage, which is skipped.
 bool Cycle::packs_balls(const ModelInstance& inst) const {
-    for (const auto& other : instances_)
+    for (const auto& other : instances)
         if (other->desc->rates_stage && rates_stage_needed(*other)) return false;
     return inst.fields_accumulated.empty() || inst.desc->rates_stage;
 }
@@ -48,25 +48,25 @@ void Cycle::fill_pair_constants(ContactSet& set) const {
 
 void Cycle::rebuild() {
     std::size_t rows = 0;
-    for (const auto& inst : instances_) rows += inst->balls.size() + inst->walls.size();
+    for (const auto& inst : instances) rows += inst->balls.size() + inst->walls.size();
     const bool lean = rows > lean_rebuild_rows;
     if (lean) {  // the columns are laid out anew, zeroed, and build_entries() makes these
-        for (auto& inst : instances_)
+        for (auto& inst : instances)
             for (ContactSet* s : {&inst->balls, &inst->walls}) s->release_columns();
         body_contacts_.release();
         sums_.release();
     }
-    neighbours_.find_pairs(bodies, walls, assignment_, instances_, parallel_min, step_count, lean);
-    table_buffers_.resize(2 * instances_.size());  // as sets_: instance m's balls at 2m, walls at 2m + 1
+    neighbours.find_pairs(bodies, walls, assignment, instances, parallel_min, step_count, lean);
+    table_buffers_.resize(2 * instances.size());  // as sets_: instance m's balls at 2m, walls at 2m + 1
     const CarryContext carry{bodies, walls, parallel_min, lean, lean_rebuild_rows};
-    for (std::size_t m = 0; m < instances_.size(); ++m) {
-        ModelInstance& inst = *instances_[m];
-        keep_bonded_pairs(inst, inst.balls, neighbours_.ball_pairs(m));
-        keep_bonded_pairs(inst, inst.walls, neighbours_.wall_pairs(m));
-        install(carry, inst, inst.balls, neighbours_.ball_pairs(m), table_buffers_[2 * m]);
-        install(carry, inst, inst.walls, neighbours_.wall_pairs(m), table_buffers_[2 * m + 1]);
+    for (std::size_t m = 0; m < instances.size(); ++m) {
+        ModelInstance& inst = *instances[m];
+        keep_bonded_pairs(inst, inst.balls, neighbours.ball_pairs(m));
+        keep_bonded_pairs(inst, inst.walls, neighbours.wall_pairs(m));
+        install(carry, inst, inst.balls, neighbours.ball_pairs(m), table_buffers_[2 * m]);
+        install(carry, inst, inst.walls, neighbours.wall_pairs(m), table_buffers_[2 * m + 1]);
     }
-    neighbours_.built(bodies);
+    neighbours.built(bodies);
     build_entries();
 #ifdef __GLIBC__
     // A lean rebuild frees and makes blocks of megabytes. glibc keeps freed
@@ -93,7 +93,7 @@ void Cycle::install(const CarryContext& carry, ModelInstance& inst, ContactSet& 
 void Cycle::build_entries() {
     sets_.clear();
     set_owner_.clear();
-    for (auto& inst : instances_) {
+    for (auto& inst : instances) {
         sets_.push_back(&inst->balls);
         set_owner_.push_back(inst.get());
         sets_.push_back(&inst->walls);
@@ -110,7 +110,18 @@ void Cycle::build_entries() {
     packed_.forget(sets_);
     packed_.clear_limits(sets_.size());  // (rows of the old list)
     any_accumulation_ = false;
-    for (auto& inst : instances_) any_accumulation_ |= !inst->desc->rates_stage && !inst->fields_accumulated.empty();
+    for (auto& inst : instances) any_accumulation_ |= !inst->desc->rates_stage && !inst->fields_accumulated.empty();
+}
+
+// The radii and masses of the ends from the bodies, whatever a checkpoint
+// held (files written before they were kept for inactive rows lack them);
+// the nominal step recomputed from the state, as the uninterrupted run did.
+void Cycle::restored() {
+    monitor.forget_nominal();
+    last_good_.drop();
+    for (auto& inst : instances)
+        for (ContactSet* s : {&inst->balls, &inst->walls}) fill_pair_constants(*s);
+    build_entries();
 }
 
 } // namespace plab

@@ -13,18 +13,18 @@ World::World(int d, std::shared_ptr<PluginHost> host)
 
 World::~World() = default;
 
-int World::group_index(const std::string& name) { return cycle->groups().group_index(name); }
-int World::find_group(const std::string& name) const { return cycle->groups().find_group(name); }
-const std::vector<std::string>& World::group_names() const { return cycle->groups().group_names(); }
+int World::group_index(const std::string& name) { return cycle->assignment.group_index(name); }
+int World::find_group(const std::string& name) const { return cycle->assignment.find_group(name); }
+const std::vector<std::string>& World::group_names() const { return cycle->assignment.group_names(); }
 int World::add_instance(const std::string& model, std::vector<double> props) {
     return cycle->add_instance(model, std::move(props));
 }
 void World::assign(int group_a, int group_b, int instance) { cycle->assign(group_a, group_b, instance); }
-int World::assigned(int group_a, int group_b) const { return cycle->groups().assigned(group_a, group_b); }
-std::size_t World::model_count() const { return cycle->instances().size(); }
-ModelView World::model(std::size_t instance) const { return {*cycle, *cycle->instances().at(instance)}; }
+int World::assigned(int group_a, int group_b) const { return cycle->assignment.assigned(group_a, group_b); }
+std::size_t World::model_count() const { return cycle->instances.size(); }
+ModelView World::model(std::size_t instance) const { return {*cycle, *cycle->instances.at(instance)}; }
 void World::set_max_overlap(std::size_t instance, double fraction_of_radius) {
-    cycle->instances().at(instance)->max_overlap = fraction_of_radius;
+    cycle->instances.at(instance)->max_overlap = fraction_of_radius;
 }
 int World::register_field(const std::string& name, double default_value, const char* unit) {
     return cycle->register_field(name, default_value, unit);
