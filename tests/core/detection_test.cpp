@@ -1,6 +1,7 @@
 // Contact detection finds exactly the overlapping pairs, and per-contact
 // history survives re-detection by the ids of the two ends.
 #include "simulation.hpp"
+#include "contacts/contact_keys.hpp"
 #include "world/cycle.hpp"  // (a test of the contact tables inside the kernel)
 
 #include <catch2/catch.hpp>
@@ -65,13 +66,13 @@ TEST_CASE("shear-force history survives a neighbour-list rebuild", "[detection]"
     const ContactSet& s = w.cycle->instances[0]->balls;
     std::map<std::pair<BodyId, BodyId>, double> before;
     for (std::size_t k = 0; k < s.size(); ++k)
-        if (s.active[k]) before[w.cycle->row_keys(s, k)] = s.history[3 * k] + 2 * s.history[3 * k + 1];
+        if (s.active[k]) before[row_key(w.bodies, w.walls, s, k)] = s.history[3 * k] + 2 * s.history[3 * k + 1];
     REQUIRE(before.size() > 20);
     w.mark_dirty();  // force a rebuild: rows are re-created and re-sorted
     w.prepare();
     std::size_t matched = 0;
     for (std::size_t k = 0; k < s.size(); ++k) {
-        auto it = before.find(w.cycle->row_keys(s, k));
+        auto it = before.find(row_key(w.bodies, w.walls, s, k));
         if (it == before.end()) continue;
         // the re-evaluation re-projects the shear force: equal to rounding, not reset
         CHECK(s.history[3 * k] + 2 * s.history[3 * k + 1] == Approx(it->second).epsilon(1e-12));

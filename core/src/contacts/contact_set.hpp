@@ -1,6 +1,6 @@
 // The contact table of one model instance and one kind (ball–ball or
 // ball–wall): candidate pairs with their history and the columns of the
-// contact batch. Rows are sorted by the ids of the two ends (Cycle::row_keys);
+// contact batch. Rows are sorted by the ids of the two ends (contacts/contact_keys.hpp row_key);
 // history is carried across rebuilds by that key.
 #pragma once
 

@@ -21,20 +21,20 @@ bool on_centre_path(const ModelInstance& inst) {
 }
 } // namespace
 
-void Cycle::mark_ball_rows_in_range() {
-    const bool list = !passes.empty();
-    if (list) pass_contacts.start();
-    in_range_.resize(sets_.size());
-    for (std::uint32_t si = 0; si < sets_.size(); ++si) {
-        ContactSet& s = *sets_[si];
+void ForcePipeline::mark_ball_rows_in_range() {
+    const bool list = !in_.passes.empty();
+    if (list) in_.pass_contacts.start();
+    in_range_.resize(in_.sets.size());
+    for (std::uint32_t si = 0; si < in_.sets.size(); ++si) {
+        ContactSet& s = *in_.sets[si];
         in_range_[si].listed = false;
         if (s.with_wall) {  // the geometry set their flags
-            if (list) pass_contacts.append_active_wall_rows(s);
+            if (list) in_.pass_contacts.append_active_wall_rows(s);
             continue;
         }
         mark_set_in_range(si, list);
     }
-    if (list) pass_contacts.finish();
+    if (list) in_.pass_contacts.finish();
     in_range_marked_ = true;
 }
 
@@ -44,23 +44,23 @@ void Cycle::mark_ball_rows_in_range() {
 // b * kContactBatch on, then the
 // passes' contacts appended in batch order, so the list is the same for
 // any thread count (`list`: there are passes).
-void Cycle::mark_set_in_range(std::uint32_t si, bool list) {
-    const ModelInstance& inst = *set_owner_[si];
+void ForcePipeline::mark_set_in_range(std::uint32_t si, bool list) {
+    const ModelInstance& inst = *in_.set_owner[si];
     RowsInRange& r = in_range_[si];
     const bool centre = on_centre_path(inst);
-    const std::size_t n = sets_[si]->size(), n_batches = (n + kContactBatch - 1) / kContactBatch;
+    const std::size_t n = in_.sets[si]->size(), n_batches = (n + kContactBatch - 1) / kContactBatch;
     r.count.resize(n_batches);
     r.row.resize(n);
-    const bool distances = centre || list;  // (the packer's and the passes')
+    const bool distances = centre || list;  // (the packer's and the in_.passes')
     r.distance.resize(distances ? n : 0);
-#pragma omp parallel for schedule(static) if (n >= parallel_min)
+#pragma omp parallel for schedule(static) if (n >= in_.parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::size_t k0 = b * kContactBatch, k1 = std::min(n, k0 + kContactBatch);
         r.count[b] = std::uint32_t(range_test_rows(inst, si, k0, k1, r.row.data() + k0,
                                                    distances ? r.distance.data() + k0 : nullptr));
     }
     r.listed = centre;
-    if (list) pass_contacts.append_in_range(*sets_[si], r, parallel_min);
+    if (list) in_.pass_contacts.append_in_range(*in_.sets[si], r, in_.parallel_min);
 }
 
 } // namespace plab

@@ -44,10 +44,10 @@ bool pack_centre_loop(const Bodies& B, const ContactSet& s, const OptionalInputs
 // mark_ball_rows_in_range() listed this cycle (or range_test_rows()), packed
 // into d with the centres' relative velocity. True when an active contact
 // overlaps beyond the model's max_overlap.
-bool Cycle::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+bool ForcePipeline::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                              DenseBatch& d) {
-    ContactSet& s = *sets_[si];
-    const auto& B = bodies;
+    ContactSet& s = *in_.sets[si];
+    const auto& B = in_.bodies;
     const std::size_t stride = std::size_t(inst.stride);
     std::size_t n_active;
     const RowsInRange* marked = in_range_marked_ && si < in_range_.size() && in_range_[si].listed ? &in_range_[si] : nullptr;
@@ -64,7 +64,7 @@ bool Cycle::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
     // reads the masses, not the effective mass and radius (two divisions)
     d.poison_unread(inst);
     const OptionalInputs optional(inst);
-    const bool exceeded = dim == 2 ? pack_centre_loop<2>(B, s, optional, inst.max_overlap, n_active, d)
+    const bool exceeded = in_.dim == 2 ? pack_centre_loop<2>(B, s, optional, inst.max_overlap, n_active, d)
                                    : pack_centre_loop<3>(B, s, optional, inst.max_overlap, n_active, d);
     gather_history(d.history.data(), s.history.data(), d.rows, n_active, stride);
     d.count = std::uint32_t(n_active);
@@ -80,13 +80,13 @@ bool Cycle::pack_centre_rows(const ModelInstance& inst, std::uint32_t si, std::s
 // batch's least step limit to PackedTable::limits (the stable step), and
 // each row's force added, in row order, to the chunk's partial sums: -F on
 // end 1, +F on end 2, no moment.
-void Cycle::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d,
+void ForcePipeline::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d,
                                std::size_t begin, const Chunk& ch) {
-    ContactSet& s = *sets_[si];
+    ContactSet& s = *in_.sets[si];
     const std::size_t stride = std::size_t(inst.stride);
-    double* fm = sums_.slots(ch);  // body i at width * (i - lo): forces only (Chunk::forces_only)
-    const std::size_t width = slot_doubles(dim, true);
-    const bool with_z = dim == 3;  // (2D slots: fx, fy)
+    double* fm = reduction_.chunks.slots(ch);  // body i at width * (i - lo): forces only (Chunk::forces_only)
+    const std::size_t width = slot_doubles(in_.dim, true);
+    const bool with_z = in_.dim == 3;  // (2D slots: fx, fy)
     const std::int32_t lo = ch.lo;
     write_forces(s, d, contact_forces_kept_);  // (point and normal: recomputed on demand, the set is packed)
     // The rows of one end 1 come in a run (a neighbour list): its sum is
@@ -123,7 +123,7 @@ void Cycle::unpack_centre_rows(std::uint32_t si, const ModelInstance& inst, cons
     }
     if (held_body >= 0) put_back();
     if (inst.uses(PLAB_IO_DT_LIMIT)) {  // the batch's least step limit, its first row (PackedTable::limits)
-        BatchLimit& least = packed_[si].limits[begin / kContactBatch];
+        BatchLimit& least = packed[si].limits[begin / kContactBatch];
         for (std::size_t a = 0; a < d.count; ++a)
             if (d.dt_limit[a] < least.dt) least = {d.dt_limit[a], d.rows[a]};
     }

@@ -89,16 +89,16 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
 // rows that left the range back to its declared defaults (a separated
 // contact is forgotten, as the adapter's batch loop did; a row that stays
 // out of range keeps them). Returns how many rows are in range.
-std::size_t Cycle::range_test_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+std::size_t ForcePipeline::range_test_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                                    std::uint32_t* row, double* distance) {
-    ContactSet& s = *sets_[si];
+    ContactSet& s = *in_.sets[si];
     const RangeTest in_range(inst);
     const std::size_t stride = std::size_t(inst.stride);
     // raw pointers: the byte stores below (flags) may alias anything, so
     // the compiler would otherwise reload every column's address per row
-    const RangeRows c{s.end1.data(), s.end2.data(), bodies.radius.data(), s.history.data(),
-                      bodies.position.data(), s.packed ? nullptr : s.gap.data(), s.active.data(), packed_[si].live.data(),
-                      dim == 2};
+    const RangeRows c{s.end1.data(), s.end2.data(), in_.bodies.radius.data(), s.history.data(),
+                      in_.bodies.position.data(), s.packed ? nullptr : s.gap.data(), s.active.data(), packed[si].live.data(),
+                      in_.dim == 2};
     std::uint32_t idle[kContactBatch];
     double unused[kContactBatch];  // where an output the caller does not take goes
     if (!distance) distance = unused;
@@ -163,18 +163,18 @@ bool pack_rows_in_range(const Bodies& B, const ContactSet& s, const OptionalInpu
 // The range test (range_test_rows), then the geometry of the rows in range
 // packed into d. True when an active contact overlaps beyond its model's
 // max_overlap.
-bool Cycle::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
+bool ForcePipeline::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, std::size_t begin, std::size_t end,
                            DenseBatch& d) {
     const std::size_t n_active = range_test_rows(inst, si, begin, end, d.row, d.distance);
     d.rows = d.row;
     d.distances = d.distance;
-    const ContactSet& s = *sets_[si];
+    const ContactSet& s = *in_.sets[si];
     const std::size_t stride = std::size_t(inst.stride);
     // only the optional inputs the model reads (abi.h, PLAB_IO_*)
     d.poison_unread(inst);
     const OptionalInputs optional(inst);
-    const bool exceeded = dim == 2 ? pack_rows_in_range<2>(bodies, s, optional, inst.max_overlap, n_active, d)
-                                   : pack_rows_in_range<3>(bodies, s, optional, inst.max_overlap, n_active, d);
+    const bool exceeded = in_.dim == 2 ? pack_rows_in_range<2>(in_.bodies, s, optional, inst.max_overlap, n_active, d)
+                                   : pack_rows_in_range<3>(in_.bodies, s, optional, inst.max_overlap, n_active, d);
     gather_history(d.history.data(), s.history.data(), d.row, n_active, stride);
     d.count = std::uint32_t(n_active);
     // the outputs a model adds to start from zero (dt limit: no limit); the
@@ -298,23 +298,23 @@ void write_back(double* col, std::size_t width, const double* dense, const Dense
 // whose forces are read, Cycle::contact_forces_wanted); then each row's
 // force and moments added to the chunk's partial sums, and the batch's
 // energy sums, as scatter_rows() does for full columns.
-void Cycle::unpack_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
+void ForcePipeline::unpack_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,
                         const Chunk& ch) {
-    ContactSet& s = *sets_[si];
+    ContactSet& s = *in_.sets[si];
     const std::size_t stride = std::size_t(inst.stride);
-    double* fm = sums_.slots(ch);  // body i at width * (i - lo)
-    const std::size_t width = slot_doubles(dim, false);
+    double* fm = reduction_.chunks.slots(ch);  // body i at width * (i - lo)
+    const std::size_t width = slot_doubles(in_.dim, false);
     const std::int32_t lo = ch.lo;
     const bool pure_moments = inst.uses(PLAB_IO_MOMENTS), breaks = inst.uses(PLAB_IO_BREAK_ENERGY);
     write_forces(s, d, contact_forces_kept_);
-    const UnpackedSums sums = dim == 2 ? unpack_loop<2>(s, d, fm, width, lo, pure_moments, breaks)
+    const UnpackedSums sums = in_.dim == 2 ? unpack_loop<2>(s, d, fm, width, lo, pure_moments, breaks)
                                        : unpack_loop<3>(s, d, fm, width, lo, pure_moments, breaks);
     const double strain = sums.strain, slip = sums.slip, dashpot = sums.dashpot, broken = sums.broken;
     scatter_history(s.history.data(), d.history.data(), d.row, d.count, stride);
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);
     e[0] = strain; e[1] = slip; e[2] = dashpot; e[3] = broken; e[4] = 0;
     if (d.count == 0) return;  // no row to report: what the columns hold is not read
-    HeldOutputs& held = packed_[si].held[begin / kContactBatch];
+    HeldOutputs& held = packed[si].held[begin / kContactBatch];
     const std::size_t end = std::min(s.size(), begin + kContactBatch);
     // an output the model does not write is not kept by a packed set
     // (ContactSet::keeps), or holds its neutral value (abi.h, PLAB_IO_*)

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "forces/geometry.hpp"
-#include "world/cycle.hpp"
+#include "forces/force_pipeline.hpp"
 
 #include <cstring>
 #include <iterator>

@@ -7,6 +7,7 @@
 // and the answer would drift in the last bits.
 #include <plab_host/checkpoint.hpp>
 
+#include "contacts/contact_keys.hpp"
 #include "world/cycle.hpp"
 
 #include <cstdio>
@@ -372,14 +373,14 @@ void load_walls(Walls& w, const Cycle& world, CheckpointReader& in) {
 // ---- contacts -------------------------------------------------------------
 
 // The keys are written though the world derives them from the ends
-// (Cycle::row_keys): the file stays readable as before, and a restart checks
+// (contacts/contact_keys.hpp): the file stays readable as before, and a restart checks
 // that its rows name the same bodies.
 void save_set(const Cycle& w, const ModelInstance& inst, const ContactSet& cs, CheckpointWriter& out) {
     auto& s = const_cast<ContactSet&>(cs);  // double_columns() hands out pointers; nothing is changed
     out.column(s.end1);
     out.column(s.end2);
     std::vector<BodyId> key1(s.size()), key2(s.size());
-    for (std::size_t k = 0; k < s.size(); ++k) std::tie(key1[k], key2[k]) = w.row_keys(s, k);
+    for (std::size_t k = 0; k < s.size(); ++k) std::tie(key1[k], key2[k]) = row_key(w.bodies, w.walls, s, k);
     out.column(key1);
     out.column(key2);
     out.column(s.active);
@@ -618,7 +619,7 @@ void load_contacts(Cycle& w, CheckpointReader& in) {
                         "); the contact history it holds would be lost — restart with the plug-in that wrote it");
             slot_of_file.push_back(found);
         }
-        inst->balls.packed = w.packs_balls(*inst);
+        inst->balls.packed = w.forces.packs_balls(*inst);
         std::vector<BodyId> key1, key2;
         for (ContactSet* s : {&inst->balls, &inst->walls}) {
             load_set(*inst, *s, slot_of_file, in, key1, key2);
@@ -626,7 +627,7 @@ void load_contacts(Cycle& w, CheckpointReader& in) {
                 const bool ok = s->end1[k] >= 0 && std::size_t(s->end1[k]) < w.bodies.size() && s->end2[k] >= 0 &&
                                 std::size_t(s->end2[k]) < (s->with_wall ? w.walls.facets.size() : w.bodies.size());
                 if (!ok) in.fail("a contact of model '" + model + "' names a body or facet that does not exist");
-                if (w.row_keys(*s, k) != std::make_pair(key1[k], key2[k]))
+                if (row_key(w.bodies, w.walls, *s, k) != std::make_pair(key1[k], key2[k]))
                     in.fail("a contact of model '" + model + "' names bodies by index and by id that differ");
             }
         }

@@ -34,8 +34,14 @@ Cycle::Cycle(World& w, std::shared_ptr<PluginHost> plugins)
       contact_forces_wanted(w.contact_forces_wanted), bond_breaks(w.bond_breaks), snapshot_interval(w.snapshot_interval),
       lean_rebuild_rows(w.lean_rebuild_rows), on_snapshot(w.on_snapshot), stopped(w.stopped), energies(w.energies),
       phase_seconds(w.phase_seconds), host(std::move(plugins)),
-      monitor({dim, bodies, walls, assignment, instances, sets_, set_owner_, body_contacts_, packed_, energies, parallel_min},
-               step_count, time, last_dt, stopped) {}
+      reduction({dim, bodies, walls, fields, gravity, instances, sets_, set_owner_, body_contacts_, energies, last_dt,
+                 parallel_min}),
+      forces({dim, bodies, walls, fields, assignment, instances, passes, sets_, set_owner_, body_contacts_, pass_contacts,
+              bond_breaks, time, step_count, last_dt, parallel_min},
+             reduction),
+      monitor({dim, bodies, walls, assignment, instances, sets_, set_owner_, body_contacts_, forces.packed, energies,
+               parallel_min},
+              step_count, time, last_dt, stopped) {}
 
 Cycle::~Cycle() {
     for (auto& inst : instances)
@@ -132,7 +138,7 @@ void Cycle::run_passes(std::uint32_t phase) {
         v.contact_end2 = pass_contacts.end2();
         v.contact_end2_is_wall = pass_contacts.end2_is_wall();
         // the distances hold at these positions while the range test's lists do
-        v.contact_distance = pass_contacts.distance(in_range_marked_);
+        v.contact_distance = pass_contacts.distance(forces.pass_distances_current());
         char diagnostic[2048];  // room for a pass's advice (sph_eos: ~800 characters)
         diagnostic[0] = '\0';
         v.diagnostic = diagnostic;
@@ -157,7 +163,7 @@ void Cycle::prepare() {
     // incremental history (a re-evaluation must not add a shear increment)
     const double dt = last_dt;
     last_dt = 0;
-    contact_forces_kept_ = true;  // (also after a step that failed before its forces)
+    forces.write_contact_forces(true);  // (also after a step that failed before its forces)
     force_pass();
     leapfrog_.cache_inverse_masses(bodies);
     leapfrog_.body_energies(bodies, 0.0);
@@ -236,7 +242,7 @@ void Cycle::advance() {
     time += dt;
     ++step_count;
     const bool post_force = has_passes(PLAB_PHASE_POST_FORCE);
-    contact_forces_kept_ = !contact_forces_wanted || contact_forces_wanted();
+    forces.write_contact_forces(!contact_forces_wanted || contact_forces_wanted());
     force_pass(post_force ? 0.0 : 0.5 * dt);  // the closing half kick inside reduce(), unless a pass comes between
     {
         PhaseTimer t{phase_seconds[ph_motion]};
@@ -260,60 +266,23 @@ void Cycle::force_pass(double closing_kick) {
     }
     {
         PhaseTimer t{phase_seconds[ph_force]};
-        find_fields_at_default();
-        packed_.clear_limits(sets_.size());  // force_sweep() keeps those of centre-force sets, the columns the others'
         // a pass added since the last rebuild may need a rates stage over
         // full columns that a packed set lacks (packs_balls)
         bool repacked = false;
         for (auto& inst : instances)
-            if (inst->balls.packed != packs_balls(*inst)) {
+            if (inst->balls.packed != forces.packs_balls(*inst)) {
                 lay_out_columns(*inst, inst->balls);
                 fill_pair_constants(inst->balls);
                 repacked = true;
             }
         if (repacked) build_entries();  // (which rows it lists depends on packing)
-        // without a rates stage, each set is done in one sweep over batches
-        // (geometry, model, scatter to slots); a rates stage needs all the
-        // geometry before any force. A rates stage whose sums nothing reads
-        // is skipped (rates_stage_needed).
-        still_.find(bodies, assignment, instances);
-        bool rates_models = false;
-        swept_ = true;
-        for (auto& inst : instances) {
-            rates_models |= inst->desc->rates_stage != 0;
-            swept_ &= !(inst->desc->rates_stage && rates_stage_needed(*inst));
-        }
-        for (std::uint32_t si = 0; si < sets_.size(); ++si) {
-            ModelInstance& inst = *instances[si / 2];
-            ContactSet& s = *sets_[si];
-            if (!s.with_wall && swept_) continue;  // geometry in the sweep
-            geometry(inst, s);
-            if (s.with_wall) resolve_wall_features(bodies, walls, s);
-        }
-        if (swept_ && rates_models) {
-            // the passes that turn rates into states (e.g. summation density,
-            // the EOS) still run before the forces, on this cycle's contacts
-            mark_ball_rows_in_range();  // (it lists the passes' contacts too)
-            run_passes(PLAB_PHASE_RATES_DONE);
-            for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
-            in_range_marked_ = false;
-        } else if (swept_) {
-            for (std::uint32_t si = 0; si < sets_.size(); ++si) force_sweep(si, !sets_[si]->with_wall);
-            if (!passes.empty()) pass_contacts.list_active(sets_);  // the sweeps set the active flags
-        } else {
-            if (!passes.empty()) pass_contacts.list_active(sets_);
-            rates_stage();
-            for (std::uint32_t m = 0; m < instances.size(); ++m) {
-                ModelInstance& inst = *instances[m];
-                if (still_.centre_table_still(2 * m, inst.balls, instances)) hold_still(inst.balls);  // (as force_sweep)
-                else compute(inst, inst.balls, PLAB_STAGE_FORCES);
-                compute(inst, inst.walls, PLAB_STAGE_FORCES);
-            }
-        }
+        forces.run([this](std::uint32_t phase) { run_passes(phase); });
     }
     {
         PhaseTimer t{phase_seconds[ph_reduction]};
-        if (reduce(closing_kick)) monitor.check_finite();
+        const bool non_finite = reduction.reduce(closing_kick, forces.rows_summed(), leapfrog_);
+        monitor.stiffness.invalidate();
+        if (non_finite) monitor.check_finite();
     }
     {
         PhaseTimer t{phase_seconds[ph_post_force]};
@@ -380,52 +349,7 @@ void Cycle::sum_energies(double dt) {
     energies.boundary += boundary;
 }
 
-double Cycle::unbalanced_force_ratio() const {
-    double unbalanced = 0;
-    std::size_t free_bodies = 0;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const std::uint8_t fix = bodies.fixity[i];
-        Vec f = bodies.force[i];
-        for (int c = 0; c < 3; ++c)
-            if (fix & (dof_x << c)) f[c] = 0;
-        if ((fix & (dof_x | dof_y | dof_z)) == (dof_x | dof_y | dof_z)) continue;
-        unbalanced += f.norm();
-        ++free_bodies;
-    }
-    double contact = 0;
-    std::size_t n = 0;
-    for (auto& inst : instances)
-        for (const ContactSet* s : {&inst->balls, &inst->walls})
-            for (std::size_t k = 0; k < s->size(); ++k)
-                if (s->active[k]) {
-                    contact += Vec(&s->force[3 * k]).norm();
-                    ++n;
-                }
-    if (free_bodies == 0) return 0;
-    if (n == 0 || contact == 0) return kInf;
-    return (unbalanced / double(free_bodies)) / (contact / double(n));
-}
 
-std::size_t Cycle::active_contacts() const {
-    std::size_t n = 0;
-    for (auto& inst : instances)
-        for (const ContactSet* s : {&inst->balls, &inst->walls})
-            for (std::uint8_t a : s->active) n += a;
-    return n;
-}
 
-std::uint64_t Cycle::state_hash() const {
-    std::uint64_t h = 1469598103934665603ull;
-    auto mix = [&h](const void* p, std::size_t bytes) {
-        const auto* c = static_cast<const unsigned char*>(p);
-        for (std::size_t i = 0; i < bytes; ++i) h = (h ^ c[i]) * 1099511628211ull;
-    };
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        mix(bodies.position[i].data(), 3 * sizeof(double));
-        mix(bodies.velocity[i].data(), 3 * sizeof(double));
-        mix(bodies.angular_velocity[i].data(), 3 * sizeof(double));
-    }
-    return h;
-}
 
 } // namespace plab

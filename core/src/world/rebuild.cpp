@@ -13,21 +13,13 @@
 namespace plab {
 
 // A set's columns for its rows, packed or full as the world's models want
-// (packs_balls): after a rebuild, a restore, or a pass that needs the full
+// (ForcePipeline::packs_balls): after a rebuild, a restore, or a pass that needs the full
 // columns back.
 void Cycle::lay_out_columns(const ModelInstance& inst, ContactSet& set) {
-    set.packed = !set.with_wall && packs_balls(inst);
+    set.packed = !set.with_wall && forces.packs_balls(inst);
     set.resize_columns(set.size(), int(inst.fields_accumulated.size()));
 }
 
-// A set is packed when force_sweep() takes the dense path for it: no rates
-// stage runs over full columns (force_pass(): swept_), and its model
-// accumulates nothing or only sums of a rates stage, which is skipped.
-bool Cycle::packs_balls(const ModelInstance& inst) const {
-    for (const auto& other : instances)
-        if (other->desc->rates_stage && rates_stage_needed(*other)) return false;
-    return inst.fields_accumulated.empty() || inst.desc->rates_stage;
-}
 
 // The radii and masses of the ends, for a model that reads the full columns
 // (a packed set's go to its model packed, from the bodies).
@@ -54,7 +46,7 @@ void Cycle::rebuild() {
         for (auto& inst : instances)
             for (ContactSet* s : {&inst->balls, &inst->walls}) s->release_columns();
         body_contacts_.release();
-        sums_.release();
+        reduction.chunks.release();
     }
     neighbours.find_pairs(bodies, walls, assignment, instances, parallel_min, step_count, lean);
     table_buffers_.resize(2 * instances.size());  // as sets_: instance m's balls at 2m, walls at 2m + 1
@@ -106,11 +98,8 @@ void Cycle::build_entries() {
     for (std::uint32_t si = 0; si < sets_.size(); ++si)
         listed[si] = !(sets_[si]->packed && (set_owner_[si]->desc->flags & PLAB_MODEL_FORCE_AT_CENTRES));
     body_contacts_.build(sets_, listed, bodies.size());
-    sums_.build(sets_, parallel_min);
-    packed_.forget(sets_);
-    packed_.clear_limits(sets_.size());  // (rows of the old list)
-    any_accumulation_ = false;
-    for (auto& inst : instances) any_accumulation_ |= !inst->desc->rates_stage && !inst->fields_accumulated.empty();
+    reduction.build();
+    forces.forget_rows();  // (rows of the old list)
 }
 
 // The radii and masses of the ends from the bodies, whatever a checkpoint

@@ -4,6 +4,9 @@
 
 #include <plab_host/world.hpp>
 
+#include "contacts/contact_keys.hpp"
+#include "forces/geometry.hpp"
+
 namespace plab {
 
 World::World(int d, std::shared_ptr<PluginHost> host)
@@ -58,7 +61,7 @@ bool ContactTable::with_wall() const { return set_->with_wall; }
 bool ContactTable::active(std::size_t k) const { return set_->active[k] != 0; }
 std::size_t ContactTable::end1(std::size_t k) const { return std::size_t(set_->end1[k]); }
 std::size_t ContactTable::end2(std::size_t k) const { return std::size_t(set_->end2[k]); }
-ContactKey ContactTable::key(std::size_t k) const { return cycle_->row_keys(*set_, k); }
+ContactKey ContactTable::key(std::size_t k) const { return row_key(cycle_->bodies, cycle_->walls, *set_, k); }
 const double* ContactTable::history(std::size_t k) const {
     return set_->history.data() + k * std::size_t(instance_->stride);
 }
@@ -67,10 +70,10 @@ bool ContactTable::bonded(std::size_t k) const {
     return slot >= 0 && history(k)[slot] > 0;
 }
 Vec ContactTable::force(std::size_t k) const { return Vec(&set_->force[3 * k]); }
-Vec ContactTable::normal(std::size_t k) const { return cycle_->contact_normal(*set_, k); }
-Vec ContactTable::point(std::size_t k) const { return cycle_->contact_point(*set_, k); }
-double ContactTable::gap(std::size_t k) const { return cycle_->contact_gap(*set_, k); }
-double ContactTable::end_radius(std::size_t k, bool end2) const { return cycle_->end_radius(*set_, k, end2); }
+Vec ContactTable::normal(std::size_t k) const { return row_normal(cycle_->bodies, *set_, k); }
+Vec ContactTable::point(std::size_t k) const { return row_point(cycle_->bodies, *set_, k); }
+double ContactTable::gap(std::size_t k) const { return row_gap(cycle_->bodies, *set_, k); }
+double ContactTable::end_radius(std::size_t k, bool end2) const { return row_end_radius(cycle_->bodies, *set_, k, end2); }
 double ContactTable::stiffness(std::size_t k) const { return set_->k_t_at(k); }
 double ContactTable::dt_limit(std::size_t k) const { return set_->dt_limit_at(k); }
 
