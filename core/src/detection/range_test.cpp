@@ -51,7 +51,7 @@ void ForcePipeline::mark_set_in_range(std::uint32_t si, bool list) {
     const std::size_t n = in_.sets[si]->size(), n_batches = (n + kContactBatch - 1) / kContactBatch;
     r.count.resize(n_batches);
     r.row.resize(n);
-    const bool distances = centre || list;  // (the packer's and the in_.passes')
+    const bool distances = centre || list;  // (the packer's and the passes')
     r.distance.resize(distances ? n : 0);
 #pragma omp parallel for schedule(static) if (n >= in_.parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {

@@ -149,7 +149,7 @@ void ForcePipeline::model_failed(const ModelInstance& inst) const {
                    std::to_string(in_.step_count));
 }
 
-// The force pass of one set in a single sweep over its chunks (world.hpp),
+// The force pass of one set in a single sweep over its chunks (reduction/chunked_sums.hpp),
 // batch by batch: geometry (ball–ball sets; a wall set has it done before,
 // because resolve_wall_features needs a ball's rows together), the model,
 // and the rows' forces added to the chunk's partial sums while the batch is

@@ -380,7 +380,7 @@ void save_set(const Cycle& w, const ModelInstance& inst, const ContactSet& cs, C
     out.column(s.end1);
     out.column(s.end2);
     std::vector<BodyId> key1(s.size()), key2(s.size());
-    for (std::size_t k = 0; k < s.size(); ++k) std::tie(key1[k], key2[k]) = row_key(w.bodies, w.walls, s, k);
+    for (std::size_t k = 0; k < s.size(); ++k) std::tie(key1[k], key2[k]) = row_key(w.world.bodies, w.world.walls, s, k);
     out.column(key1);
     out.column(key2);
     out.column(s.active);
@@ -453,13 +453,13 @@ std::string slot_list(const plab_contact_model_desc& d) {
 
 void save_scalars(const Cycle& w, CheckpointWriter& out) {
     out.section("world");
-    out.u32(std::uint32_t(w.dim));
-    out.f64(w.time);
-    out.u64(w.step_count);
-    out.f64(w.last_dt);
-    out.vec(w.gravity);
+    out.u32(std::uint32_t(w.world.dim));
+    out.f64(w.world.time);
+    out.u64(w.world.step_count);
+    out.f64(w.world.last_dt);
+    out.vec(w.world.gravity);
     out.u64(w.neighbours.rebuilds);
-    const Energies& e = w.energies;
+    const Energies& e = w.world.energies;
     for (double v : {e.kinetic, e.strain, e.body, e.boundary, e.slip, e.dashpot, e.local_damping, e.bond_break}) out.f64(v);
 
     out.section("assignment");
@@ -470,10 +470,10 @@ void save_scalars(const Cycle& w, CheckpointWriter& out) {
 
 void save_fields(const Cycle& w, CheckpointWriter& out) {
     out.section("fields");
-    out.u64(w.fields.size());
-    for (std::size_t f = 0; f < w.fields.size(); ++f) {
-        out.str(w.fields.names()[f]);
-        out.column(w.fields.column(int(f)));
+    out.u64(w.world.fields.size());
+    for (std::size_t f = 0; f < w.world.fields.size(); ++f) {
+        out.str(w.world.fields.names()[f]);
+        out.column(w.world.fields.column(int(f)));
     }
 }
 
@@ -529,8 +529,8 @@ void save_passes(const Cycle& w, CheckpointWriter& out) {
 
 void save_log(const Cycle& w, CheckpointWriter& out) {
     out.section("bond_breaks");
-    out.u64(w.bond_breaks.size());
-    for (const BondBreak& b : w.bond_breaks) {
+    out.u64(w.world.bond_breaks.size());
+    for (const BondBreak& b : w.world.bond_breaks) {
         out.u64(b.step);
         out.f64(b.time);
         out.u64(b.id1);
@@ -557,13 +557,13 @@ void save_log(const Cycle& w, CheckpointWriter& out) {
 void load_scalars(Cycle& w, CheckpointReader& in) {
     in.section("world");
     const std::uint32_t dim = in.u32();
-    if (int(dim) != w.dim) in.fail("a " + std::to_string(dim) + "D state for a " + std::to_string(w.dim) + "D scene");
-    w.time = in.f64();
-    w.step_count = in.u64();
-    w.last_dt = in.f64();
-    w.gravity = in.vec();
+    if (int(dim) != w.world.dim) in.fail("a " + std::to_string(dim) + "D state for a " + std::to_string(w.world.dim) + "D scene");
+    w.world.time = in.f64();
+    w.world.step_count = in.u64();
+    w.world.last_dt = in.f64();
+    w.world.gravity = in.vec();
     w.neighbours.rebuilds = in.u64();
-    Energies& e = w.energies;
+    Energies& e = w.world.energies;
     for (double* v : {&e.kinetic, &e.strain, &e.body, &e.boundary, &e.slip, &e.dashpot, &e.local_damping, &e.bond_break})
         *v = in.f64();
 
@@ -582,18 +582,18 @@ void load_scalars(Cycle& w, CheckpointReader& in) {
 void load_fields(Cycle& w, CheckpointReader& in) {
     in.section("fields");
     const std::uint64_t n_fields = in.u64();
-    std::vector<bool> seen(w.fields.size(), false);
+    std::vector<bool> seen(w.world.fields.size(), false);
     for (std::uint64_t f = 0; f < n_fields; ++f) {
         const std::string name = in.str();
         std::vector<double> values = in.column<double>();
-        const int idx = w.fields.index(name);
+        const int idx = w.world.fields.index(name);
         if (idx < 0) in.fail("body field '" + name + "' is registered by no plug-in this scene loads");
-        if (values.size() != w.bodies.size()) in.fail("body field '" + name + "' has the wrong length");
-        w.fields.column(idx) = std::move(values);
+        if (values.size() != w.world.bodies.size()) in.fail("body field '" + name + "' has the wrong length");
+        w.world.fields.column(idx) = std::move(values);
         seen[idx] = true;
     }
     for (std::size_t f = 0; f < seen.size(); ++f)  // a field new since the file was written starts at its default
-        if (!seen[f]) w.fields.column(int(f)).assign(w.bodies.size(), w.fields.default_value(int(f)));
+        if (!seen[f]) w.world.fields.column(int(f)).assign(w.world.bodies.size(), w.world.fields.default_value(int(f)));
 }
 
 void load_contacts(Cycle& w, CheckpointReader& in) {
@@ -624,10 +624,10 @@ void load_contacts(Cycle& w, CheckpointReader& in) {
         for (ContactSet* s : {&inst->balls, &inst->walls}) {
             load_set(*inst, *s, slot_of_file, in, key1, key2);
             for (std::size_t k = 0; k < s->size(); ++k) {
-                const bool ok = s->end1[k] >= 0 && std::size_t(s->end1[k]) < w.bodies.size() && s->end2[k] >= 0 &&
-                                std::size_t(s->end2[k]) < (s->with_wall ? w.walls.facets.size() : w.bodies.size());
+                const bool ok = s->end1[k] >= 0 && std::size_t(s->end1[k]) < w.world.bodies.size() && s->end2[k] >= 0 &&
+                                std::size_t(s->end2[k]) < (s->with_wall ? w.world.walls.facets.size() : w.world.bodies.size());
                 if (!ok) in.fail("a contact of model '" + model + "' names a body or facet that does not exist");
-                if (row_key(w.bodies, w.walls, *s, k) != std::make_pair(key1[k], key2[k]))
+                if (row_key(w.world.bodies, w.world.walls, *s, k) != std::make_pair(key1[k], key2[k]))
                     in.fail("a contact of model '" + model + "' names bodies by index and by id that differ");
             }
         }
@@ -641,7 +641,7 @@ void load_detection(Cycle& w, CheckpointReader& in) {
     w.prepared = in.u8() != 0;
     lists.position_at_build = in.vecs();
     lists.wall_motion = in.f64();
-    const bool reference_missing = !lists.invalidated && lists.position_at_build.size() != w.bodies.size();
+    const bool reference_missing = !lists.invalidated && lists.position_at_build.size() != w.world.bodies.size();
     w.neighbours.restore(std::move(lists));
     std::vector<double> k_trans = in.column<double>();
     std::vector<double> k_rot = in.column<double>();
@@ -651,7 +651,7 @@ void load_detection(Cycle& w, CheckpointReader& in) {
     w.pass_contacts.wall_column() = in.column<std::uint8_t>();
     if (reference_missing)
         in.fail("the neighbour-list reference positions do not match the bodies");
-    if (w.prepared && (w.monitor.stiffness.translational().size() != w.bodies.size() || w.monitor.stiffness.rotational().size() != w.bodies.size()))
+    if (w.prepared && (w.monitor.stiffness.translational().size() != w.world.bodies.size() || w.monitor.stiffness.rotational().size() != w.world.bodies.size()))
         in.fail("the stiffness sums do not match the bodies");
 }
 
@@ -684,8 +684,8 @@ void load_passes(Cycle& w, CheckpointReader& in) {
 
 void load_log(Cycle& w, CheckpointReader& in) {
     in.section("bond_breaks");
-    w.bond_breaks.resize(in.u64());
-    for (BondBreak& b : w.bond_breaks) {
+    w.world.bond_breaks.resize(in.u64());
+    for (BondBreak& b : w.world.bond_breaks) {
         b.step = in.u64();
         b.time = in.f64();
         b.id1 = in.u64();
@@ -699,7 +699,7 @@ void load_log(Cycle& w, CheckpointReader& in) {
     if (in.u64() != 0) in.fail("it holds random-number generator states this build has no use for");
 
     if (in.format() < 2) {  // no detector baseline saved: measure it at this state
-        w.monitor.detector.measure_baseline(w.energies, w.bodies, w.walls, w.gravity);
+        w.monitor.detector.measure_baseline(w.world.energies, w.world.bodies, w.world.walls, w.world.gravity);
         return;
     }
     in.section("stability");
@@ -714,8 +714,8 @@ void load_log(Cycle& w, CheckpointReader& in) {
 // table and the fields.
 void save_cycle(const Cycle& w, CheckpointWriter& out) {
     save_scalars(w, out);
-    save_bodies(w.bodies, out);
-    save_walls(w.walls, out);
+    save_bodies(w.world.bodies, out);
+    save_walls(w.world.walls, out);
     save_fields(w, out);
     save_contacts(w, out);
     save_detection(w, out);
@@ -725,10 +725,10 @@ void save_cycle(const Cycle& w, CheckpointWriter& out) {
 
 void load_cycle(Cycle& w, CheckpointReader& in) {
     load_scalars(w, in);
-    load_bodies(w.bodies, in);
-    for (int g : w.bodies.group)
+    load_bodies(w.world.bodies, in);
+    for (int g : w.world.bodies.group)
         if (g < 0 || g >= w.assignment.group_count()) in.fail("a body has group index " + std::to_string(g));
-    load_walls(w.walls, w, in);
+    load_walls(w.world.walls, w, in);
     load_fields(w, in);
     load_contacts(w, in);
     load_detection(w, in);

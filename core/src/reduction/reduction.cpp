@@ -100,7 +100,7 @@ void Reduction::damp_body(std::size_t i, Vec& f, Vec& m, double& local_work) con
 // (its work added to local_work), the 2D projection. False when a body's
 // state may be non-finite.
 bool Reduction::finish_bodies(std::size_t i0, std::size_t i1, double& local_work) {
-    if (any_accumulation_)  // in_.fields of rates-stage models are summed after that stage
+    if (any_accumulation_)  // fields of rates-stage models are summed after that stage
         for (std::size_t i = i0; i < i1; ++i)
             for (const BodyContact& en : in_.body_contacts.of(i)) {
                 const ContactSet& s = *in_.sets[en.set];

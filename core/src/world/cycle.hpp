@@ -12,6 +12,7 @@
 
 #include "contacts/assignment.hpp"
 #include "contacts/body_contacts.hpp"
+#include "contacts/contact_tables.hpp"
 #include "contacts/history_carry.hpp"
 #include "contacts/model_instance.hpp"
 #include "detection/neighbour_lists.hpp"
@@ -32,55 +33,18 @@ namespace plab {
 
 class Cycle {
 public:
-    // The cycle of world `w`: it runs on w's state, which it
-    // holds by reference (the host API's World owns it).
+    // The cycle of world `w`, which owns the state the cycle runs on.
     Cycle(World& w, std::shared_ptr<PluginHost> host);
     ~Cycle();
     Cycle(const Cycle&) = delete;
     Cycle& operator=(const Cycle&) = delete;
 
-    // ---- the world's state (plab_host/world.hpp says what each is) ----
-    const int dim;
-    Bodies& bodies;
-    Walls& walls;
-    BodyFields& fields;
-    Vec& gravity;
-    std::size_t& parallel_min;
-    double &fixed_dt, &safety_factor, &time;
-    std::uint64_t& step_count;
-    double& last_dt;
-    std::function<bool()>& contact_forces_wanted;
-    std::vector<BondBreak>& bond_breaks;
-    std::uint64_t& snapshot_interval;
-    std::size_t& lean_rebuild_rows;
-    std::function<void()>& on_snapshot;
-    Diagnostic& stopped;
-    Energies& energies;
-    std::array<double, ph_count>& phase_seconds;
+    World& world;  // the state it runs on (plab_host/world.hpp)
 
     // ---- what the World's functions of the same names do ----
-    int add_instance(const std::string& model, std::vector<double> props);
-    void assign(int group_a, int group_b, int instance);
-    int register_field(const std::string& name, double default_value, const char* unit = nullptr) {
-        return fields.add(name, default_value, unit, bodies.size());
-    }
-    bool field_computed(int f) const { return forces.field_computed(f); }
-    void add_pass(const std::string& name, std::vector<double> props);
-    StableStep stable_timestep() { return monitor.stable_timestep(); }
-    StableStep nominal_timestep() const { return monitor.nominal_timestep(); }
     void step();
     void prepare();
-    bool contact_forces_current() const { return forces.contact_forces_kept(); }
-    std::size_t bond(int group_a, int group_b, double gap_tolerance);
-    std::size_t intact_bonds() const;
     bool at_last_good() const { return at_last_good_; }
-    StabilityLimits& stability_limits() { return monitor.detector.limits; }
-    std::vector<Eigen::Matrix3d> ball_stress() const;
-    double unbalanced_force_ratio() const;
-    std::size_t active_contacts() const;
-    std::uint64_t state_hash() const;
-    void set_skin(double skin) { neighbours.skin = skin; }
-    std::uint64_t rebuilds() const { return neighbours.rebuilds; }
     void mark_dirty() { neighbours.invalidate(); prepared = false; monitor.forget_nominal(); last_good_.drop(); }
     // After a checkpoint replaced the state: the caches derived from it renewed.
     void restored();
@@ -96,10 +60,7 @@ public:
 
 private:
     // the contact tables in one list, instance m's balls at 2m, walls at 2m + 1
-    std::vector<ContactSet*> sets_;
-    std::vector<const ModelInstance*> set_owner_;
-    std::vector<TableBuffers> table_buffers_;  // per table: the carry of history across a rebuild
-    BodyContacts body_contacts_;               // per body: its rows, for the sums taken body by body
+    ContactTables tables;  // every table in one list, their buffers, each body's rows
     LastGoodState last_good_;
     bool at_last_good_ = false;
     Leapfrog leapfrog_;  // the law of motion; 1/m and 1/I cached by prepare()
@@ -123,7 +84,6 @@ private:
     void rebuild();
     void install(const CarryContext& carry, ModelInstance& inst, ContactSet& set, PairList& pairs, TableBuffers& t);
     void build_entries();
-    void fill_pair_constants(ContactSet& set) const;
     void lay_out_columns(const ModelInstance& inst, ContactSet& set);
     // the law of motion's first half and the energies (cycle.cpp)
     DriftInputs drift_inputs() const;

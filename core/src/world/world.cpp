@@ -2,10 +2,13 @@
 // and the contact views, each handed to the cycle (world/cycle.hpp).
 #include "world/cycle.hpp"
 
+#include <plab_host/errors.hpp>
 #include <plab_host/world.hpp>
 
 #include "contacts/contact_keys.hpp"
 #include "forces/geometry.hpp"
+
+#include <cmath>
 
 namespace plab {
 
@@ -19,10 +22,6 @@ World::~World() = default;
 int World::group_index(const std::string& name) { return cycle->assignment.group_index(name); }
 int World::find_group(const std::string& name) const { return cycle->assignment.find_group(name); }
 const std::vector<std::string>& World::group_names() const { return cycle->assignment.group_names(); }
-int World::add_instance(const std::string& model, std::vector<double> props) {
-    return cycle->add_instance(model, std::move(props));
-}
-void World::assign(int group_a, int group_b, int instance) { cycle->assign(group_a, group_b, instance); }
 int World::assigned(int group_a, int group_b) const { return cycle->assignment.assigned(group_a, group_b); }
 std::size_t World::model_count() const { return cycle->instances.size(); }
 ModelView World::model(std::size_t instance) const { return {*cycle, *cycle->instances.at(instance)}; }
@@ -30,28 +29,79 @@ void World::set_max_overlap(std::size_t instance, double fraction_of_radius) {
     cycle->instances.at(instance)->max_overlap = fraction_of_radius;
 }
 int World::register_field(const std::string& name, double default_value, const char* unit) {
-    return cycle->register_field(name, default_value, unit);
+    return fields.add(name, default_value, unit, bodies.size());
 }
-void World::add_pass(const std::string& name, std::vector<double> props) { cycle->add_pass(name, std::move(props)); }
-void World::set_skin(double skin) { cycle->set_skin(skin); }
+void World::set_skin(double skin) { cycle->neighbours.skin = skin; }
 void World::step() { cycle->step(); }
 void World::prepare() { cycle->prepare(); }
 void World::mark_dirty() { cycle->mark_dirty(); }
-std::size_t World::bond(int group_a, int group_b, double gap_tolerance) {
-    return cycle->bond(group_a, group_b, gap_tolerance);
+int World::add_instance(const std::string& model, std::vector<double> props) {
+    const plab_contact_model_desc* d = cycle->host->model(model);
+    if (!d) throw InputError("", "contact model '" + model + "' is not loaded");
+    auto inst = std::make_unique<ModelInstance>();
+    inst->model = model;
+    inst->desc = d;
+    inst->props = std::move(props);
+    inst->state = d->create ? d->create(inst->props.data()) : nullptr;
+    if (d->create && !inst->state)
+        throw PluginError("contact model '" + model + "' (" + cycle->host->library_of_model(model) +
+                          ") failed to create an instance from its properties");
+    inst->range = d->activity_range(inst->props.data());
+    if (!std::isfinite(inst->range))
+        throw PluginError("contact model '" + model + "' reports a non-finite activity range");
+    inst->stride = int(d->history_count);
+    // overlap means something for mechanical contacts only (SPH pairs are
+    // "in contact" at a distance)
+    inst->max_overlap = d->range_kind == PLAB_RANGE_GAP ? 1.0 : kInf;
+    if (d->fields_read_count > ReadFields::kMax)
+        throw PluginError("contact model '" + model + "' reads " + std::to_string(d->fields_read_count) +
+                          " body fields; plab passes at most " + std::to_string(ReadFields::kMax));
+    for (uint32_t f = 0; f < d->fields_read_count; ++f)
+        inst->fields_read.push_back(register_field(d->fields_read[f].name, d->fields_read[f].default_value, d->fields_read[f].unit));
+    for (uint32_t f = 0; f < d->fields_accumulated_count; ++f)
+        inst->fields_accumulated.push_back(
+            register_field(d->fields_accumulated[f].name, d->fields_accumulated[f].default_value,
+                           d->fields_accumulated[f].unit));
+    inst->walls.with_wall = true;
+    for (ContactSet* s : {&inst->balls, &inst->walls}) {
+        s->model_io = d->io;
+        s->model_flags = d->flags;
+    }
+    cycle->instances.push_back(std::move(inst));
+    mark_dirty();
+    return int(cycle->instances.size()) - 1;
 }
-StabilityLimits& World::stability_limits() { return cycle->stability_limits(); }
 
-StableStep stable_timestep(const World& w) { return w.cycle->stable_timestep(); }
-StableStep nominal_timestep(const World& w) { return w.cycle->nominal_timestep(); }
-std::uint64_t state_hash(const World& w) { return w.cycle->state_hash(); }
-std::vector<Eigen::Matrix3d> ball_stress(const World& w) { return w.cycle->ball_stress(); }
-double unbalanced_force_ratio(const World& w) { return w.cycle->unbalanced_force_ratio(); }
-std::size_t active_contacts(const World& w) { return w.cycle->active_contacts(); }
-std::size_t intact_bonds(const World& w) { return w.cycle->intact_bonds(); }
-std::uint64_t rebuilds(const World& w) { return w.cycle->rebuilds(); }
-bool field_computed(const World& w, int field) { return w.cycle->field_computed(field); }
-bool contact_forces_current(const World& w) { return w.cycle->contact_forces_current(); }
+void World::assign(int a, int b, int instance) {
+    cycle->assignment.assign(a, b, instance);
+    mark_dirty();
+}
+
+void World::add_pass(const std::string& name, std::vector<double> props) {
+    const plab_pass_desc* d = cycle->host->pass(name);
+    if (!d) throw InputError("", "pass '" + name + "' is not loaded");
+    PassInstance p;
+    p.desc = d;
+    p.props = std::move(props);
+    p.state = d->create ? d->create(p.props.data()) : nullptr;
+    if (d->create && !p.state) throw PluginError("pass '" + name + "' failed to create its state");
+    for (uint32_t f = 0; f < d->field_count; ++f)
+        p.fields.push_back(register_field(d->fields[f].name, d->fields[f].default_value, d->fields[f].unit));
+    // stable order: by phase, then stage, then order of addition
+    auto it = cycle->passes.begin();
+    while (it != cycle->passes.end() &&
+           (it->desc->phase < d->phase || (it->desc->phase == d->phase && it->desc->stage <= d->stage)))
+        ++it;
+    cycle->passes.insert(it, std::move(p));
+}
+
+StabilityLimits& World::stability_limits() { return cycle->monitor.detector.limits; }
+
+StableStep stable_timestep(const World& w) { return w.cycle->monitor.stable_timestep(); }
+StableStep nominal_timestep(const World& w) { return w.cycle->monitor.nominal_timestep(); }
+std::uint64_t rebuilds(const World& w) { return w.cycle->neighbours.rebuilds; }
+bool field_computed(const World& w, int field) { return w.cycle->forces.field_computed(field); }
+bool contact_forces_current(const World& w) { return w.cycle->forces.contact_forces_kept(); }
 bool at_last_good(const World& w) { return w.cycle->at_last_good(); }
 
 // ---- contact views ----
@@ -61,7 +111,7 @@ bool ContactTable::with_wall() const { return set_->with_wall; }
 bool ContactTable::active(std::size_t k) const { return set_->active[k] != 0; }
 std::size_t ContactTable::end1(std::size_t k) const { return std::size_t(set_->end1[k]); }
 std::size_t ContactTable::end2(std::size_t k) const { return std::size_t(set_->end2[k]); }
-ContactKey ContactTable::key(std::size_t k) const { return row_key(cycle_->bodies, cycle_->walls, *set_, k); }
+ContactKey ContactTable::key(std::size_t k) const { return row_key(cycle_->world.bodies, cycle_->world.walls, *set_, k); }
 const double* ContactTable::history(std::size_t k) const {
     return set_->history.data() + k * std::size_t(instance_->stride);
 }
@@ -70,10 +120,10 @@ bool ContactTable::bonded(std::size_t k) const {
     return slot >= 0 && history(k)[slot] > 0;
 }
 Vec ContactTable::force(std::size_t k) const { return Vec(&set_->force[3 * k]); }
-Vec ContactTable::normal(std::size_t k) const { return row_normal(cycle_->bodies, *set_, k); }
-Vec ContactTable::point(std::size_t k) const { return row_point(cycle_->bodies, *set_, k); }
-double ContactTable::gap(std::size_t k) const { return row_gap(cycle_->bodies, *set_, k); }
-double ContactTable::end_radius(std::size_t k, bool end2) const { return row_end_radius(cycle_->bodies, *set_, k, end2); }
+Vec ContactTable::normal(std::size_t k) const { return row_normal(cycle_->world.bodies, *set_, k); }
+Vec ContactTable::point(std::size_t k) const { return row_point(cycle_->world.bodies, *set_, k); }
+double ContactTable::gap(std::size_t k) const { return row_gap(cycle_->world.bodies, *set_, k); }
+double ContactTable::end_radius(std::size_t k, bool end2) const { return row_end_radius(cycle_->world.bodies, *set_, k, end2); }
 double ContactTable::stiffness(std::size_t k) const { return set_->k_t_at(k); }
 double ContactTable::dt_limit(std::size_t k) const { return set_->dt_limit_at(k); }
 
