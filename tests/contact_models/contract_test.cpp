@@ -5,6 +5,7 @@
 // NaN at extreme inputs, and a positive stable timestep.
 #include <plab_host/plugins.hpp>
 #include <plab_host/types.hpp>
+#include <forces/tangential_history.hpp>  // (the host's turn of tangential history, tested from inside)
 
 #include <catch2/catch.hpp>
 
@@ -33,9 +34,10 @@ struct ContactOutput {
     std::vector<double> history;
 };
 
-// Calls compute() once over a batch of the given contacts, like the host.
-// Body field f of body i is body_fields[f][i] when given (64 bodies), else
-// a plausible 1000 for every field and body.
+// Calls compute() once over a batch of the given contacts, like the host
+// (which first turns the tangential history of the active rows into their
+// contact planes). Body field f of body i is body_fields[f][i] when given
+// (64 bodies), else a plausible 1000 for every field and body.
 std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state, const std::vector<double>& props,
                                    int dim, double dt, const std::vector<ContactInput>& in,
                                    const std::vector<std::vector<double>>* body_fields = nullptr,
@@ -85,6 +87,7 @@ std::vector<ContactOutput> compute(const plab_contact_model_desc& d, void* state
     b.break_energy = brk.data();
     b.stage = PLAB_STAGE_FORCES;
     b.body_fields_at_default = fields_at_default;
+    turn_tangential_history(d, hist.data(), hs, normal.data(), active.data(), n);
     REQUIRE(d.compute(state, props.data(), &b) == 0);
     std::vector<ContactOutput> out(n);
     for (std::size_t k = 0; k < n; ++k) {

@@ -5,6 +5,7 @@
 
 #include <plab_host/errors.hpp>
 #include <plab_host/plugins.hpp>
+#include <plab/contact_model.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -244,11 +245,57 @@ TEST_CASE("a model that names a material no library registered is refused", "[ho
                         "not registered"));
 }
 
-TEST_CASE("a library built against ABI 2.0 loads, its descriptions read as naming no material", "[host][materials]") {
+TEST_CASE("a library built against ABI 2.0 loads, its descriptions read as naming no material and no tangential slot",
+          "[host][materials]") {
     PluginHost host;
     CHECK(refusal(host, "abi20").empty());
-    REQUIRE(host.model("abi20_spring") != nullptr);
-    CHECK(host.model("abi20_spring")->material == nullptr);
+    const plab_contact_model_desc* d = host.model("abi20_spring");
+    REQUIRE(d != nullptr);
+    CHECK(d->material == nullptr);
+    REQUIRE(d->history_count == 3);
+    for (uint32_t h = 0; h < 3; ++h) {
+        INFO("slot " << h);
+        CHECK(d->history[h].size == sizeof(plab_history_desc));  // the host's copy, read with the plug-in's stride
+        CHECK(d->history[h].flags == 0);
+    }
+    CHECK(std::string(d->history[2].name) == "shear_force_z");
     REQUIRE(host.pass("abi20_pass") != nullptr);
     CHECK(host.pass("abi20_pass")->material == nullptr);
+}
+
+namespace {
+// A spring whose three history slots `flags` marks (abi.h PLAB_HISTORY_*).
+struct FlaggedSpring {
+    static constexpr const char* name = "flagged_spring";
+    static constexpr const char* doc = "test spring";
+    static constexpr const char* timestep_rule = "sqrt(m/k)";
+    static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    static constexpr plab_property_desc properties[] = {
+        plab::prop::number("k", "stiffness", "N/m", 1e5, 0.0, 1e12, PLAB_MIN_EXCLUSIVE, "spring")};
+    static constexpr plab_history_desc history[] = {plab::history_desc("a", 0.0, PLAB_SWAP_NEGATE, "x"),
+                                                    plab::history_desc("b", 0.0, PLAB_SWAP_NEGATE, "y"),
+                                                    plab::history_desc("c", 0.0, PLAB_SWAP_NEGATE, "z")};
+    static double activity_range(const double*) { return 0.0; }
+    explicit FlaggedSpring(const double*) {}
+    void law(const plab::Contact& c) const { c.set_stiffness(1e5); }
+};
+std::string flag_problems(std::initializer_list<uint32_t> flags) {
+    plab_contact_model_desc d = *plab::contact_model_desc<FlaggedSpring>();
+    std::vector<plab_history_desc> slots(FlaggedSpring::history, FlaggedSpring::history + 3);
+    std::size_t h = 0;
+    for (uint32_t f : flags) slots[h++].flags = f;
+    d.history = slots.data();
+    std::string all;
+    for (const std::string& b : check_model_desc(d)) all += b + "; ";
+    return all;
+}
+} // namespace
+
+TEST_CASE("a tangential history vector is three slots, x, y and z; other flags are refused", "[host]") {
+    CHECK(flag_problems({PLAB_HISTORY_TANGENTIAL, 0, 0}).empty());
+    CHECK_THAT(flag_problems({0, PLAB_HISTORY_TANGENTIAL, 0}),
+               Contains("history slot 1 is flagged tangential, the x of a vector, but fewer than two slots follow it"));
+    CHECK_THAT(flag_problems({PLAB_HISTORY_TANGENTIAL, PLAB_HISTORY_TANGENTIAL, 0}),
+               Contains("history slot 0 is flagged tangential, the x of a vector, and so is its y or z"));
+    CHECK_THAT(flag_problems({0, 0, 4}), Contains("history slot 2 has flags this host does not know"));
 }

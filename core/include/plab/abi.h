@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 #define PLAB_ABI_MAJOR 2u
-#define PLAB_ABI_MINOR 1u
+#define PLAB_ABI_MINOR 2u
 /* what plab_plugin_abi_version() returns: major << 16 | minor (ABI 1
  * returned its plain version number, 1 to 7, whose major reads as 0) */
 #define PLAB_ABI_VERSION ((PLAB_ABI_MAJOR << 16) | PLAB_ABI_MINOR)
@@ -126,12 +126,25 @@ typedef struct plab_material_desc {
 #define PLAB_SWAP_KEEP 0u   /* scalar (e.g. bond state) */
 #define PLAB_SWAP_NEGATE 1u /* component of a vector acting on end 2 */
 
+/* Flags of a history slot. PLAB_HISTORY_TANGENTIAL: the slot and the two
+ * after it are the x, y, z of a vector that lies in the contact plane (a
+ * shear force). Before each call of compute() the host turns it, in every
+ * active row, into the row's current plane: the component along `normal`
+ * projected out and the magnitude restored (PFC's rotation of the shear
+ * force with the contact plane); a zero vector stays zero, and one with
+ * nothing left in the plane becomes zero. The law then reads it as already
+ * in the plane. */
+#define PLAB_HISTORY_TANGENTIAL 1u
+#define PLAB_HISTORY_KNOWN_FLAGS PLAB_HISTORY_TANGENTIAL
+
 typedef struct plab_history_desc {
     uint32_t size; /* sizeof(plab_history_desc) */
     const char* name;
     double default_value;
     uint32_t swap_rule;
     const char* doc;
+    uint32_t flags; /* PLAB_HISTORY_*, on the first slot of a vector; a
+                     * description whose `size` ends before it reads as 0 */
 } plab_history_desc;
 
 /* How the activity range of a model is measured. */
@@ -183,7 +196,9 @@ typedef struct plab_contact_batch {
      * end2[k] is a facet index and must not index a body column */
     const double* const* body_fields;
 
-    /* in/out: history rows, history_stride doubles per contact */
+    /* in/out: history rows, history_stride doubles per contact; the
+     * tangential vectors (PLAB_HISTORY_TANGENTIAL) of the active rows
+     * already turned into their current contact plane */
     double* history;
 
     /* outputs, one entry per contact; the host zeroes them first in the rows

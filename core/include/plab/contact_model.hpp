@@ -33,6 +33,11 @@
 // `material` (a type, `using material = MyMaterial;`): the material whose
 // properties the model takes from a scene's materials (below).
 //
+// A history slot whose description has PLAB_HISTORY_TANGENTIAL is the first
+// of three (x, y, z) holding a vector in the contact plane, e.g. a shear
+// force: the host turns it into the current plane before law() reads it
+// (abi.h), so a law adds its increment to the stored vector as it is.
+//
 // A material (abi.h plab_material_desc, ABI 2.1) is a class with the
 // properties the models and passes of a package share:
 //
@@ -136,9 +141,12 @@ constexpr plab_property_desc optional_group(const char* key, const char* name, c
 
 } // namespace prop
 
-// A history slot: name, default, what it does when the ends swap (PLAB_SWAP_*).
-constexpr plab_history_desc history_desc(const char* name, double default_value, uint32_t swap_rule, const char* doc) {
-    return {sizeof(plab_history_desc), name, default_value, swap_rule, doc};
+// A history slot: name, default, what it does when the ends swap (PLAB_SWAP_*),
+// and PLAB_HISTORY_TANGENTIAL on the first of three slots of a vector in the
+// contact plane (the host turns it with the plane).
+constexpr plab_history_desc history_desc(const char* name, double default_value, uint32_t swap_rule, const char* doc,
+                                         uint32_t flags = 0) {
+    return {sizeof(plab_history_desc), name, default_value, swap_rule, doc, flags};
 }
 // A per-body field: name, SI unit, default.
 constexpr plab_field_desc field_desc(const char* name, const char* unit, double default_value) {

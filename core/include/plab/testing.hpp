@@ -111,6 +111,7 @@ public:
         b.dashpot_energy = &out_.dashpot_energy; b.stiffness_translational = &out_.stiffness;
         b.stiffness_rotational = &out_.rotational_stiffness; b.dt_limit = &out_.dt_limit;
         b.break_energy = &out_.break_energy; b.stage = PLAB_STAGE_FORCES;
+        if (active) turn_tangential_history(normal);
         if (d_->compute(instance_, props_.data(), &b) != 0) throw std::runtime_error("compute() returned an error");
         return {out_.force[0], out_.force[1], out_.force[2]};
     }
@@ -152,6 +153,15 @@ public:
     }
 
 private:
+    // What the host does before each call (abi.h, PLAB_HISTORY_TANGENTIAL):
+    // each tangential vector of the history turned into the contact plane.
+    void turn_tangential_history(const Vec3& normal) {
+        for (uint32_t s = 0; s + 2 < d_->history_count; ++s)
+            if (d_->history[s].flags & PLAB_HISTORY_TANGENTIAL) {
+                const Vec3 t = rotate_into_plane({history_[s], history_[s + 1], history_[s + 2]}, normal);
+                history_[s] = t.x; history_[s + 1] = t.y; history_[s + 2] = t.z;
+            }
+    }
     std::size_t index_of(const std::string& key) const {
         for (uint32_t p = 0; p < d_->property_count; ++p)
             if (key == d_->properties[p].key) return p;

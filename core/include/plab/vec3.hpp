@@ -28,6 +28,23 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 
+// v turned into the plane normal to the unit vector n: its component along
+// n projected out and its magnitude restored (PFC's rotation of a stored
+// shear force with the contact plane). A zero vector stays zero; one with
+// nothing left in the plane becomes zero. Written as choices between
+// values, not branches, so that a loop over contacts vectorises. The host
+// applies it to the history a model declares tangential (abi.h,
+// PLAB_HISTORY_TANGENTIAL).
+inline Vec3 rotate_into_plane(const Vec3& v, const Vec3& n) {
+    const double mag2 = dot(v, v);
+    const Vec3 t = v - dot(v, n) * n;
+    const double tmag2 = dot(t, t);
+    const Vec3 turned = t * std::sqrt(mag2 / tmag2);  // (not finite when tmag2 is 0: then not used)
+    const bool zero = mag2 == 0.0, in_plane = tmag2 > 0.0;
+    return {zero ? v.x : in_plane ? turned.x : 0.0, zero ? v.y : in_plane ? turned.y : 0.0,
+            zero ? v.z : in_plane ? turned.z : 0.0};
+}
+
 } // namespace plab
 
 #endif // PLAB_VEC3_HPP

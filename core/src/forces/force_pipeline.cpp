@@ -10,6 +10,7 @@
 #include "forces/geometry.hpp"
 #include "forces/packed_batch.hpp"
 #include "forces/row_lists.hpp"
+#include "forces/tangential_history.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -97,13 +98,17 @@ void clear_outputs(ContactSet& s, std::size_t o, std::size_t m) {
 }
 } // namespace
 
-// Calls the model once on rows [o, o + m) of a set; returns its status.
-// `clear`: zero the outputs of every row first (the rates stage writes some
-// that the force stage must not see); otherwise the geometry zeroed those
-// of the active rows, which are the only ones a model writes.
+// Calls the model once on rows [o, o + m) of a set, the tangential history
+// of its active rows first turned into their contact planes; returns its
+// status. `clear`: zero the outputs of every row first (the rates stage
+// writes some that the force stage must not see); otherwise the geometry
+// zeroed those of the active rows, which are the only ones a model writes.
 int ForcePipeline::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::size_t m, std::uint32_t stage,
-                      const ReadFields& fields, bool clear) {
+                              const ReadFields& fields, bool clear) {
     if (clear) clear_outputs(s, o, m);  // here rather than up front: the rows stay in cache for the model
+    const std::size_t stride = std::size_t(inst.stride);
+    turn_tangential_history(*inst.desc, s.history.data() + o * stride, stride, s.normal.data() + 3 * o,
+                            s.active.data() + o, m);
     // pointers into the accumulation columns, on the stack: no allocation in the cycle
     constexpr std::size_t kMaxAccumulated = 16;
     double* a1[kMaxAccumulated];

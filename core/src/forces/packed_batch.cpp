@@ -4,6 +4,7 @@
 // scatter_rows(), so results are the same bit for bit.
 #include "forces/packed_batch.hpp"
 #include "forces/row_lists.hpp"
+#include "forces/tangential_history.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -198,6 +199,8 @@ bool ForcePipeline::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, 
 
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const ReadFields& fields) {
     if (d.count == 0) return 0;
+    // (every packed row is active; both packers leave the normals in d)
+    turn_tangential_history(*inst.desc, d.history.data(), std::size_t(inst.stride), d.normal, nullptr, d.count);
     plab_contact_batch batch{sizeof(plab_contact_batch)};
     batch.dim = uint32_t(dim);
     batch.count = d.count;

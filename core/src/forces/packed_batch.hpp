@@ -182,7 +182,9 @@ void bind_rows(plab_contact_batch& b, Columns& c, std::size_t o, double* history
     b.break_energy = std::data(c.break_energy) + o;
 }
 
-// Calls the model once on the packed rows; returns its status.
+// Calls the model once on the packed rows, their tangential history first
+// turned into their contact planes (forces/tangential_history.hpp); returns
+// its status.
 int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const ReadFields& fields);
 
 // The loop over a batch's rows in range that both packers share (d.rows and

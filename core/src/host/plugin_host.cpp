@@ -48,9 +48,11 @@ int cb_register_material(void* host, const plab_material_desc* d) {
 }
 
 // The smallest model and pass descriptions this host reads: ABI 2.0's,
-// which end before `material` (abi.h); what they lack reads as zero.
+// which end before `material` (abi.h); what they lack reads as zero. So
+// for a history slot: ABI 2.1's ends before `flags`.
 constexpr std::size_t kMinModelDescSize = offsetof(plab_contact_model_desc, material);
 constexpr std::size_t kMinPassDescSize = offsetof(plab_pass_desc, material);
+constexpr std::size_t kMinHistoryDescSize = offsetof(plab_history_desc, flags);
 
 std::string fmt(double v) {
     std::ostringstream s;
@@ -87,10 +89,11 @@ std::string too_small(const std::string& what, const char* type, uint32_t size, 
 
 // The host's copy of a plug-in's description array, read with the stride of
 // its first element's `size` (abi.h); false (and a problem) when an element
-// is smaller than this host's struct.
+// is smaller than `min_size` (the struct of the oldest minor this host
+// reads, `min_minor`: the members it lacks read as zero).
 template <class T>
 bool copy_array(const T* src, uint32_t n, const std::string& what, const char* type, std::vector<T>& out,
-                std::vector<std::string>& bad) {
+                std::vector<std::string>& bad, std::size_t min_size = sizeof(T), uint32_t min_minor = PLAB_ABI_MINOR) {
     out.clear();
     if (n == 0) return true;
     if (!src) {
@@ -98,8 +101,8 @@ bool copy_array(const T* src, uint32_t n, const std::string& what, const char* t
         return false;
     }
     const uint32_t stride = src->size;
-    if (stride < sizeof(T)) {
-        bad.push_back(too_small("each " + what + " description", type, stride, sizeof(T)));
+    if (stride < min_size) {
+        bad.push_back(too_small("each " + what + " description", type, stride, min_size, min_minor));
         return false;
     }
     const char* base = reinterpret_cast<const char*>(src);
@@ -111,7 +114,8 @@ bool copy_array(const T* src, uint32_t n, const std::string& what, const char* t
             return false;
         }
         T c;
-        std::memcpy(&c, e, sizeof(T));
+        std::memset(&c, 0, sizeof(T));
+        std::memcpy(&c, e, std::min<std::size_t>(stride, sizeof(T)));
         c.size = uint32_t(sizeof(T));
         out.push_back(c);
     }
@@ -261,6 +265,28 @@ std::vector<std::string> check_properties(const plab_property_desc* p, uint32_t 
     return bad;
 }
 
+namespace {
+// A tangential vector (PLAB_HISTORY_TANGENTIAL) is three slots, x, y, z:
+// its first slot has two after it, neither the first of another.
+std::vector<std::string> check_tangential_slots(const plab_contact_model_desc& d) {
+    std::vector<std::string> bad;
+    for (uint32_t i = 0; d.history && i < d.history_count; ++i) {
+        const std::string slot = "history slot " + std::to_string(i);
+        const uint32_t flags = d.history[i].flags;
+        if (flags & ~uint32_t(PLAB_HISTORY_KNOWN_FLAGS))
+            bad.push_back(slot + " has flags this host does not know (abi.h PLAB_HISTORY_*)");
+        if (!(flags & PLAB_HISTORY_TANGENTIAL)) continue;
+        if (i + 2 >= d.history_count)
+            bad.push_back(slot + " is flagged tangential, the x of a vector, but fewer than two slots follow it");
+        else if ((d.history[i + 1].flags | d.history[i + 2].flags) & PLAB_HISTORY_TANGENTIAL)
+            bad.push_back(slot + " is flagged tangential, the x of a vector, and so is its y or z");
+        else
+            i += 2;
+    }
+    return bad;
+}
+} // namespace
+
 std::vector<std::string> check_model_desc(const plab_contact_model_desc& d) {
     std::vector<std::string> bad = check_properties(d.properties, d.property_count);
     if (!d.name || !*d.name) bad.push_back("model has no name");
@@ -282,6 +308,7 @@ std::vector<std::string> check_model_desc(const plab_contact_model_desc& d) {
         if (d.history[i].swap_rule > PLAB_SWAP_NEGATE)
             bad.push_back("history slot " + std::to_string(i) + " has an unknown swap rule");
     }
+    for (const std::string& b : check_tangential_slots(d)) bad.push_back(b);
     return bad;
 }
 
@@ -439,7 +466,7 @@ int PluginHost::register_model(const plab_contact_model_desc* d) {
     const std::string name = d->name ? d->name : "?";
     std::vector<std::string> bad;
     copy_array(d->properties, d->property_count, "property", "plab_property_desc", c.properties, bad);
-    copy_array(d->history, d->history_count, "history slot", "plab_history_desc", c.history, bad);
+    copy_array(d->history, d->history_count, "history slot", "plab_history_desc", c.history, bad, kMinHistoryDescSize, 0);
     copy_array(d->fields_read, d->fields_read_count, "field read", "plab_field_desc", c.fields_read, bad);
     copy_array(d->fields_accumulated, d->fields_accumulated_count, "field accumulated", "plab_field_desc",
                c.fields_accumulated, bad);

@@ -6,6 +6,8 @@
 
 #include <plab_host/errors.hpp>
 
+#include "forces/tangential_history.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -46,6 +48,7 @@ StableStep probe_contact(const ModelInstance& inst, int dim, const Probe& a, con
     std::uint8_t active = 1;
     std::vector<double> history(std::size_t(inst.stride) + 1);
     for (int h = 0; h < inst.stride; ++h) history[h] = inst.desc->history[h].default_value;
+    turn_tangential_history(*inst.desc, history.data(), std::size_t(inst.stride), normal, nullptr, 1);  // (as every call)
     // fields: a probe reads each field's default value
     std::vector<double> field_value(inst.fields_read.size() + 1, 0.0);
     std::vector<const double*> cols(inst.fields_read.size() + 1, field_value.data());

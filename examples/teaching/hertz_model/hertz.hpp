@@ -56,10 +56,13 @@ struct Hertz {
          PLAB_MIX_MIN),
     };
 
-    // Step 3: the tangential force is remembered between steps.
+    // Step 3: the tangential force is remembered between steps. It is a
+    // vector in the contact plane, which the host turns with the plane
+    // before law() reads it (PLAB_HISTORY_TANGENTIAL on its x).
     enum Slot : int { shear_force_x, shear_force_y, shear_force_z, slot_count };
     static constexpr plab_history_desc history[] = {
-        plab::history_desc("shear_force_x", 0.0, PLAB_SWAP_NEGATE, "tangential force on end 2, global x, N"),
+        plab::history_desc("shear_force_x", 0.0, PLAB_SWAP_NEGATE, "tangential force on end 2, global x, N",
+                           PLAB_HISTORY_TANGENTIAL),
         plab::history_desc("shear_force_y", 0.0, PLAB_SWAP_NEGATE, "tangential force on end 2, global y, N"),
         plab::history_desc("shear_force_z", 0.0, PLAB_SWAP_NEGATE, "tangential force on end 2, global z, N"),
     };
@@ -89,10 +92,11 @@ struct Hertz {
         const double fn_damping = -2.0 * std::sqrt(5.0 / 6.0) * beta_ * std::sqrt(kn * m) * vn;
         const double fn = std::max(0.0, fn_elastic + fn_damping);
 
-        // Step 3: Mindlin no-slip tangential spring, incremental, Coulomb-capped.
+        // Step 3: Mindlin no-slip tangential spring, incremental (on the
+        // stored force, already in the current plane), Coulomb-capped.
         const double kt = 8.0 * G_eff_ * sqrt_Rd;
         const Vec3 vt = v - vn * n;
-        Vec3 ft = in_plane(c.history_vec(shear_force_x), n) - kt * c.dt() * vt;
+        Vec3 ft = c.history_vec(shear_force_x) - kt * c.dt() * vt;
         const double ft_max = fric_ * fn;
         const double ft_mag = norm(ft);
         const bool sliding = ft_mag > ft_max;
@@ -121,14 +125,6 @@ struct Hertz {
 
 private:
     static double shear_modulus(const double* p) { return p[youngs_modulus] / (2.0 * (1.0 + p[poisson_ratio])); }
-
-    // The stored tangential force, turned with the contact plane.
-    static Vec3 in_plane(const Vec3& f, const Vec3& n) {
-        const double mag = norm(f);
-        const Vec3 t = f - dot(f, n) * n;
-        const double tmag = norm(t);
-        return tmag > 0.0 ? t * (mag / tmag) : Vec3{};
-    }
 
     // pi R sqrt(rho/G)/(0.1631 nu + 0.8766) for the smaller ball; density
     // from mass and radius (a disc of unit thickness in 2D).

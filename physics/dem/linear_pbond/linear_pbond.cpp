@@ -59,7 +59,8 @@ struct LinearPBond {
         plab::linear_law::shear_force_z,
         plab::history_desc("bond_state", 0.0, PLAB_SWAP_KEEP, "1 bonded, 0 unbonded or broken"),
         plab::history_desc("bond_normal_force", 0.0, PLAB_SWAP_KEEP, "bond normal force, tension positive, N"),
-        plab::history_desc("bond_shear_force_x", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, x, N"),
+        plab::history_desc("bond_shear_force_x", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, x, N",
+                           PLAB_HISTORY_TANGENTIAL),  // (the host turns it with the contact plane)
         plab::history_desc("bond_shear_force_y", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, y, N"),
         plab::history_desc("bond_shear_force_z", 0.0, PLAB_SWAP_NEGATE, "bond shear force on end 2, z, N"),
         plab::history_desc("bond_moment_x", 0.0, PLAB_SWAP_NEGATE, "bond moment on end 2, x, N m"),
@@ -111,12 +112,15 @@ Vec3 LinearPBond::bond(const Contact& c, const Section& s, Vec3& moment, double&
     const Vec3 vs = v - vn * n;
 
     double fn = c.history(bond_normal_force) + s.area * kn_bar_ * vn * dt;  // eq. 47, tension positive
-    Vec3 fs = plab::linear_law::rotate_into_plane(c.history_vec(bond_shear_force_x), n) - s.area * ks_bar_ * dt * vs;  // eq. 48
+    Vec3 fs = c.history_vec(bond_shear_force_x) - s.area * ks_bar_ * dt * vs;  // eq. 48, the stored fs in the plane
 
+    // The stored moment splits into its twist, along the new normal, and its
+    // bending part, turned into the new plane with the bending part's own
+    // magnitude (not the whole moment's, as a tangential slot would be).
     const Vec3 m_old = c.history_vec(bond_moment_x);
     const Vec3 dtheta = c.rel_angular_velocity() * dt;
     const Vec3 dtheta_twist = plab::dot(dtheta, n) * n;
-    Vec3 m_bend = plab::linear_law::rotate_into_plane(m_old - plab::dot(m_old, n) * n, n) - kn_bar_ * s.inertia * (dtheta - dtheta_twist);
+    Vec3 m_bend = plab::rotate_into_plane(m_old - plab::dot(m_old, n) * n, n) - kn_bar_ * s.inertia * (dtheta - dtheta_twist);
     Vec3 m_twist = c.dim() == 3 ? plab::dot(m_old, n) * n - ks_bar_ * s.polar * dtheta_twist : Vec3{};
 
     const double sigma = fn / s.area + mcf_ * plab::norm(m_bend) * s.radius / s.inertia;  // eq. 49

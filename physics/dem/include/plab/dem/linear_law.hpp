@@ -53,9 +53,11 @@ struct Material {
     static constexpr plab_property_desc properties[] = {kn, ks, fric, dp_nratio, dp_sratio, dp_mode, rgap};
 };
 
-// History slots of the linear law's shear spring (three, in this order).
+// History slots of the linear law's shear spring (three, in this order): a
+// vector in the contact plane, which the host turns with the plane before
+// the law reads it (abi.h, PLAB_HISTORY_TANGENTIAL).
 inline constexpr plab_history_desc shear_force_x = plab::history_desc("shear_force_x", 0.0, PLAB_SWAP_NEGATE,
-                                                    "linear shear force on end 2, global x, N");
+                                                    "linear shear force on end 2, global x, N", PLAB_HISTORY_TANGENTIAL);
 inline constexpr plab_history_desc shear_force_y = plab::history_desc("shear_force_y", 0.0, PLAB_SWAP_NEGATE,
                                                     "linear shear force on end 2, global y, N");
 inline constexpr plab_history_desc shear_force_z = plab::history_desc("shear_force_z", 0.0, PLAB_SWAP_NEGATE,
@@ -94,25 +96,10 @@ template <> [[gnu::always_inline]] inline Plane row_vector<Plane>(const double* 
 [[gnu::always_inline]] inline void put_row_vector(double* c, const Vec3& v) { c[0] = v.x; c[1] = v.y; c[2] = v.z; }
 [[gnu::always_inline]] inline void put_row_vector(double* c, const Plane& v) { c[0] = v.x; c[1] = v.y; c[2] = 0.0; }
 
-// Keeps a stored vector (shear force, bending moment) in the current contact
-// plane: project out the normal component and restore the magnitude (PFC's
-// rotation of the shear force with the contact plane). Written as choices
-// between values, not branches, so that a loop over contacts can be
-// vectorised (apply_rows()); a zero vector is returned as it is.
-template <class V>
-inline V rotate_into_plane(const V& v, const V& n) {
-    const double mag2 = dot(v, v);
-    const V t = v - dot(v, n) * n;
-    const double tmag2 = dot(t, t);
-    const double scale = std::sqrt(mag2 / tmag2);  // (not finite when tmag2 is 0: then not used)
-    const bool zero = mag2 == 0.0, in_plane = tmag2 > 0.0;
-    return pick(zero, v, pick(in_plane, t * scale, zero_vector<V>()));
-}
-
 // What the law needs of one contact, and what it gives back.
 template <class V>
 struct StateOf {
-    V normal, rel_velocity, shear_force;  // shear force: the stored history
+    V normal, rel_velocity, shear_force;  // shear force: the stored history, in the current contact plane
     double gap, eff_mass, dt;
 };
 template <class V>
@@ -138,7 +125,7 @@ inline ResultOf<V> law_of(const Params& p, const StateOf<V>& c) {
     const V vs = v - vn * n;
     const double fn_lin = p.kn * overlap;  // eq. 22
 
-    const V fs_old = rotate_into_plane(c.shear_force, n);
+    const V& fs_old = c.shear_force;
     const V fs_trial = fs_old - p.ks * c.dt * vs;  // eqs. 23–25
     const double fs_max = p.fric * fn_lin;            // eq. 26
     const double fs_mag2 = dot(fs_trial, fs_trial);   // compared squared: most contacts stick
@@ -173,8 +160,8 @@ inline ResultOf<V> law_of(const Params& p, const StateOf<V>& c) {
 inline Result law(const Params& p, const State& c) { return law_of<Vec3>(p, c); }
 
 // Applies the law to contact c with its shear force stored in history slots
-// [shear_slot, shear_slot + 3). Returns the force on end 2; adds the strain,
-// slip and dashpot energies.
+// [shear_slot, shear_slot + 3) (declared tangential). Returns the force on
+// end 2; adds the strain, slip and dashpot energies.
 inline Vec3 apply(const Params& p, const Contact& c, int shear_slot, double& strain) {
     const Result r = law(p, {c.normal(), c.rel_velocity(), c.history_vec(shear_slot), c.gap(), c.eff_mass(), c.dt()});
     c.set_history_vec(shear_slot, r.shear_force);
