@@ -33,12 +33,12 @@ json probe_pile(int dim, const std::string& model) {
 // In the rows of s in contact for a second step or more, what the law read
 // of the vector it stored the step before (magnitude `stored`, out of the
 // plane): in the plane, with that magnitude. Returns how many rows it saw.
-std::size_t check_rows(const ContactSet& s, double stored) {
-    enum { vec_x, vec_y, vec_z, seen_along_normal, seen_magnitude, stride };
+std::size_t check_rows(const ContactTable& s, double stored) {
+    enum { vec_x, vec_y, vec_z, seen_along_normal, seen_magnitude };
     std::size_t seen = 0;
     for (std::size_t k = 0; k < s.size(); ++k) {
-        const double* h = &s.history[stride * k];
-        if (!s.active[k] || h[seen_magnitude] == 0.0) continue;  // (first touch: the default, zero)
+        const double* h = s.history(k);
+        if (!s.active(k) || h[seen_magnitude] == 0.0) continue;  // (first touch: the default, zero)
         INFO("row " << k);
         CHECK(std::fabs(h[seen_along_normal]) <= 1e-12 * stored);
         CHECK(h[seen_magnitude] == Approx(stored).epsilon(1e-12));
@@ -57,10 +57,10 @@ TEST_CASE("a tangential history vector reaches the law in the current contact pl
             Simulation sim(probe_pile(dim, model));
             sim.set_quiet(true);
             sim.cycle(200);
-            const ModelInstance& inst = *sim.world().instances()[0];
+            const ModelView inst = sim.world().model(0);
             const double stored = dim == 3 ? 1.3 : 0.5;  // |(0.3, -0.4, 1.2)|, |(0.3, -0.4, 0)|
-            CHECK(check_rows(inst.balls, stored) > 50);  // (packed, centre-force or full columns, by model)
-            CHECK(check_rows(inst.walls, stored) > 5);   // (full columns)
+            CHECK(check_rows(inst.balls(), stored) > 50);  // (packed, centre-force or full columns, by model)
+            CHECK(check_rows(inst.walls(), stored) > 5);   // (full columns)
         }
 }
 

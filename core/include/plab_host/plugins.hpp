@@ -6,8 +6,6 @@
 
 #include <plab/abi.h>
 
-#include <list>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,12 +50,12 @@ public:
     const plab_pass_desc* pass(const std::string& name) const;
     std::vector<std::string> model_names() const;
     std::vector<std::string> pass_names() const;
-    const std::string& library_of_model(const std::string& name) const { return model_lib_.at(name); }
-    const std::string& library_of_pass(const std::string& name) const { return pass_lib_.at(name); }
+    const std::string& library_of_model(const std::string& name) const;
+    const std::string& library_of_pass(const std::string& name) const;
     // A material (abi.h plab_material_desc) by name; nullptr: not registered.
     // Its library: the first that registered it.
     const plab_material_desc* material(const std::string& name) const;
-    const std::string& library_of_material(const std::string& name) const { return material_lib_.at(name); }
+    const std::string& library_of_material(const std::string& name) const;
     // Checkpoint hooks of a pass with private state; nullptr: stateless.
     const plab_pass_state_hooks* pass_state(const std::string& name) const;
     const std::vector<LoadedLibrary>& libraries() const { return libs_; }
@@ -73,35 +71,13 @@ private:
     bool name_taken(const std::string& name, const char* kind);
     std::vector<std::string> dirs_;
     std::vector<LoadedLibrary> libs_;
-    std::map<std::string, const plab_contact_model_desc*> models_;
-    std::map<std::string, const plab_pass_desc*> passes_;
-    std::map<std::string, std::string> model_lib_, pass_lib_;
-    std::map<std::string, const plab_pass_state_hooks*> pass_state_;
-    std::map<std::string, const plab_material_desc*> materials_;
-    std::map<std::string, std::string> material_lib_;
-    std::string loading_;               // library being initialised
+    // what the libraries registered: the host's copies of their descriptions
+    // (abi.h: each struct read by its own size), by name, with the library
+    // of each (plugin_host.cpp)
+    struct Registry;
+    std::unique_ptr<Registry> registry_;
+    std::string loading_;                         // library being initialised
     std::vector<std::string> loading_materials_;  // the materials it registers
-    // the host's copies of the descriptions registered (abi.h: each struct
-    // read by its own size), to which models_ and passes_ point
-    struct ModelCopy {
-        plab_contact_model_desc desc;
-        std::vector<plab_property_desc> properties;
-        std::vector<plab_history_desc> history;
-        std::vector<plab_field_desc> fields_read, fields_accumulated;
-    };
-    struct PassCopy {
-        plab_pass_desc desc;
-        std::vector<plab_property_desc> properties;
-        std::vector<plab_field_desc> fields;
-    };
-    std::list<ModelCopy> model_copies_;
-    std::list<PassCopy> pass_copies_;
-    std::list<plab_pass_state_hooks> hook_copies_;
-    struct MaterialCopy {
-        plab_material_desc desc;
-        std::vector<plab_property_desc> properties;
-    };
-    std::list<MaterialCopy> material_copies_;
     // the problems of a model's or pass's `material` (abi.h): registered,
     // and each of its properties that the material declares declared alike
     std::vector<std::string> check_material_use(const char* material, const plab_property_desc* p, uint32_t n) const;

@@ -5,10 +5,10 @@
 namespace plab {
 
 bool ContactSet::keeps(std::uint32_t io_bit) const {
-    if (!packed) return true;
+    if (!packed || !model) return true;
     // no moment, no stiffness; step limits per batch (PackedTable::limits, forces/packed_tables.hpp)
-    if (model_flags & PLAB_MODEL_FORCE_AT_CENTRES) return false;
-    const bool written = !(model_io & PLAB_IO_DECLARED) || (model_io & io_bit);
+    if (model->flags & PLAB_MODEL_FORCE_AT_CENTRES) return false;
+    const bool written = !(model->io & PLAB_IO_DECLARED) || (model->io & io_bit);
     return io_bit == 0 || written;
 }
 

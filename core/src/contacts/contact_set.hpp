@@ -55,19 +55,22 @@ struct ContactSet {
     // name: checkpoints save them by name, release_columns() frees them.
     std::vector<std::pair<const char*, std::vector<double>*>> double_columns();
 
-    // The owning model's io and flags (abi.h; set once, Cycle::add_instance).
+    // The owning model, for its io and flags (abi.h; set once, World::add_instance).
     // A packed set does not keep the output columns its model never writes:
     // a model that declares its io and not PLAB_IO_MOMENTS has no moment
     // columns (48 B per row), and so on; a centre-force model (SPH) keeps
     // only force and dt_limit. Readers take the neutral value of a column
-    // not kept, through these accessors.
-    std::uint32_t model_io = 0, model_flags = 0;
+    // not kept, through the *_at() functions below.
+    const plab_contact_model_desc* model = nullptr;
     bool keeps(std::uint32_t io_bit) const;  // PLAB_IO_MOMENTS, _STIFFNESS_ROTATIONAL, _DT_LIMIT, or 0 for k_t
-    double k_t_at(std::size_t k) const { return k_t.empty() ? 0.0 : k_t[k]; }
-    double k_r_at(std::size_t k) const { return k_r.empty() ? 0.0 : k_r[k]; }
-    double dt_limit_at(std::size_t k) const { return dt_limit.empty() ? kInf : dt_limit[k]; }
-    Vec moment1_at(std::size_t k) const { return moment1.empty() ? Vec(Vec::Zero()) : Vec(&moment1[3 * k]); }
-    Vec moment2_at(std::size_t k) const { return moment2.empty() ? Vec(Vec::Zero()) : Vec(&moment2[3 * k]); }
 };
+
+// Row k's value of an output column a table may not keep (ContactSet::keeps):
+// the neutral value where it is not kept.
+inline double k_t_at(const ContactSet& s, std::size_t k) { return s.k_t.empty() ? 0.0 : s.k_t[k]; }
+inline double k_r_at(const ContactSet& s, std::size_t k) { return s.k_r.empty() ? 0.0 : s.k_r[k]; }
+inline double dt_limit_at(const ContactSet& s, std::size_t k) { return s.dt_limit.empty() ? kInf : s.dt_limit[k]; }
+inline Vec moment1_at(const ContactSet& s, std::size_t k) { return s.moment1.empty() ? Vec(Vec::Zero()) : Vec(&s.moment1[3 * k]); }
+inline Vec moment2_at(const ContactSet& s, std::size_t k) { return s.moment2.empty() ? Vec(Vec::Zero()) : Vec(&s.moment2[3 * k]); }
 
 } // namespace plab

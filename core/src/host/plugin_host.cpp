@@ -5,6 +5,9 @@
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
 
+#include <list>
+#include <map>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -335,7 +338,38 @@ std::string declaration_difference(const plab_property_desc& a, const plab_prope
     return "";
 }
 
-PluginHost::PluginHost() {
+// What the libraries registered: the host's copies of their descriptions
+// (abi.h: each struct read by its own size), to which the maps by name
+// point, and the library that registered each.
+struct PluginHost::Registry {
+    struct ModelCopy {
+        plab_contact_model_desc desc;
+        std::vector<plab_property_desc> properties;
+        std::vector<plab_history_desc> history;
+        std::vector<plab_field_desc> fields_read, fields_accumulated;
+    };
+    struct PassCopy {
+        plab_pass_desc desc;
+        std::vector<plab_property_desc> properties;
+        std::vector<plab_field_desc> fields;
+    };
+    struct MaterialCopy {
+        plab_material_desc desc;
+        std::vector<plab_property_desc> properties;
+    };
+    std::list<ModelCopy> model_copies;
+    std::list<PassCopy> pass_copies;
+    std::list<plab_pass_state_hooks> hook_copies;
+    std::list<MaterialCopy> material_copies;
+    std::map<std::string, const plab_contact_model_desc*> models;
+    std::map<std::string, const plab_pass_desc*> passes;
+    std::map<std::string, std::string> model_lib, pass_lib;
+    std::map<std::string, const plab_pass_state_hooks*> pass_state;
+    std::map<std::string, const plab_material_desc*> materials;
+    std::map<std::string, std::string> material_lib;
+};
+
+PluginHost::PluginHost() : registry_(std::make_unique<Registry>()) {
     if (const std::string builtin = builtin_plugin_dir(); !builtin.empty()) dirs_.push_back(builtin);
     if (const char* env = std::getenv("PLAB_PLUGIN_PATH")) {
         std::stringstream ss(env);
@@ -346,6 +380,12 @@ PluginHost::PluginHost() {
 }
 
 PluginHost::~PluginHost() = default;
+
+const std::string& PluginHost::library_of_model(const std::string& name) const { return registry_->model_lib.at(name); }
+const std::string& PluginHost::library_of_pass(const std::string& name) const { return registry_->pass_lib.at(name); }
+const std::string& PluginHost::library_of_material(const std::string& name) const {
+    return registry_->material_lib.at(name);
+}
 
 void PluginHost::add_search_dir(const std::string& dir, bool front) {
     if (front) dirs_.insert(dirs_.begin(), dir);
@@ -423,28 +463,28 @@ const LoadedLibrary& PluginHost::load(const std::string& path_in) {
     loading_ = path;
     problems_.clear();
     loading_materials_.clear();
-    const auto before_models = models_;
-    const auto before_passes = passes_;
-    const auto before_materials = materials_;
+    const auto before_models = registry_->models;
+    const auto before_passes = registry_->passes;
+    const auto before_materials = registry_->materials;
     plab_registrar reg{uint32_t(sizeof(plab_registrar)), this, &cb_register_model, &cb_register_pass, &cb_register_pass_state,
                        &cb_register_material};
     const int rc = lib->get<int(const plab_registrar*)>("plab_plugin_init")(&reg);
     loading_.clear();
     if (rc != 0 || !problems_.empty()) {
         // roll back whatever this library registered before failing
-        for (auto it = models_.begin(); it != models_.end();)
-            it = before_models.count(it->first) ? std::next(it) : (model_lib_.erase(it->first), models_.erase(it));
-        for (auto it = passes_.begin(); it != passes_.end();)
+        for (auto it = registry_->models.begin(); it != registry_->models.end();)
+            it = before_models.count(it->first) ? std::next(it) : (registry_->model_lib.erase(it->first), registry_->models.erase(it));
+        for (auto it = registry_->passes.begin(); it != registry_->passes.end();)
             it = before_passes.count(it->first) ? std::next(it)
-                                                : (pass_lib_.erase(it->first), pass_state_.erase(it->first), passes_.erase(it));
-        for (auto it = materials_.begin(); it != materials_.end();)
-            it = before_materials.count(it->first) ? std::next(it) : (material_lib_.erase(it->first), materials_.erase(it));
+                                                : (registry_->pass_lib.erase(it->first), registry_->pass_state.erase(it->first), registry_->passes.erase(it));
+        for (auto it = registry_->materials.begin(); it != registry_->materials.end();)
+            it = before_materials.count(it->first) ? std::next(it) : (registry_->material_lib.erase(it->first), registry_->materials.erase(it));
         std::string why = problems_.empty() ? "plab_plugin_init returned " + std::to_string(rc) : join(problems_, "; ");
         throw PluginError("plug-in library " + path + " refused: " + why);
     }
-    for (const auto& [name, lib_path] : model_lib_)
+    for (const auto& [name, lib_path] : registry_->model_lib)
         if (lib_path == path) entry.models.push_back(name);
-    for (const auto& [name, lib_path] : pass_lib_)
+    for (const auto& [name, lib_path] : registry_->pass_lib)
         if (lib_path == path) entry.passes.push_back(name);
     entry.materials = loading_materials_;  // (also those an earlier library registered alike)
     entry.lib = std::move(lib);
@@ -459,7 +499,7 @@ int PluginHost::register_model(const plab_contact_model_desc* d) {
                                       kMinModelDescSize, 0));
         return 1;
     }
-    ModelCopy c;
+    Registry::ModelCopy c;
     std::memset(&c.desc, 0, sizeof(plab_contact_model_desc));  // (members of a later minor than the plug-in's)
     std::memcpy(&c.desc, d, std::min<std::size_t>(d->size, sizeof(plab_contact_model_desc)));
     c.desc.size = uint32_t(sizeof(plab_contact_model_desc));
@@ -471,7 +511,7 @@ int PluginHost::register_model(const plab_contact_model_desc* d) {
     copy_array(d->fields_accumulated, d->fields_accumulated_count, "field accumulated", "plab_field_desc",
                c.fields_accumulated, bad);
     if (!bad.empty()) { problems_.push_back("model '" + name + "': " + join(bad, "; ")); return 1; }
-    ModelCopy& m = model_copies_.emplace_back(std::move(c));
+    Registry::ModelCopy& m = registry_->model_copies.emplace_back(std::move(c));
     m.desc.properties = data_or_null(m.properties);
     m.desc.history = data_or_null(m.history);
     m.desc.fields_read = data_or_null(m.fields_read);
@@ -481,14 +521,14 @@ int PluginHost::register_model(const plab_contact_model_desc* d) {
     for (const std::string& b : check_material_use(d->material, d->properties, d->property_count)) bad.push_back(b);
     if (!bad.empty()) { problems_.push_back("model '" + name + "': " + join(bad, "; ")); return 1; }
     if (name_taken(name, "model")) return 1;
-    models_[name] = d;
-    model_lib_[name] = loading_;
+    registry_->models[name] = d;
+    registry_->model_lib[name] = loading_;
     return 0;
 }
 
 bool PluginHost::name_taken(const std::string& name, const char* kind) {
-    if (!models_.count(name) && !passes_.count(name)) return false;
-    const std::string& other = models_.count(name) ? model_lib_[name] : pass_lib_[name];
+    if (!registry_->models.count(name) && !registry_->passes.count(name)) return false;
+    const std::string& other = registry_->models.count(name) ? registry_->model_lib[name] : registry_->pass_lib[name];
     problems_.push_back(std::string(kind) + " name '" + name + "' is already registered by " + other);
     return true;
 }
@@ -499,7 +539,7 @@ int PluginHost::register_pass(const plab_pass_desc* d) {
         problems_.push_back(too_small("a pass description", "plab_pass_desc", d->size, kMinPassDescSize, 0));
         return 1;
     }
-    PassCopy c;
+    Registry::PassCopy c;
     std::memset(&c.desc, 0, sizeof(plab_pass_desc));  // (members of a later minor than the plug-in's)
     std::memcpy(&c.desc, d, std::min<std::size_t>(d->size, sizeof(plab_pass_desc)));
     c.desc.size = uint32_t(sizeof(plab_pass_desc));
@@ -508,7 +548,7 @@ int PluginHost::register_pass(const plab_pass_desc* d) {
     copy_array(d->properties, d->property_count, "property", "plab_property_desc", c.properties, bad);
     copy_array(d->fields, d->field_count, "field", "plab_field_desc", c.fields, bad);
     if (!bad.empty()) { problems_.push_back("pass '" + name + "': " + join(bad, "; ")); return 1; }
-    PassCopy& pc = pass_copies_.emplace_back(std::move(c));
+    Registry::PassCopy& pc = registry_->pass_copies.emplace_back(std::move(c));
     pc.desc.properties = data_or_null(pc.properties);
     pc.desc.fields = data_or_null(pc.fields);
     d = &pc.desc;
@@ -519,8 +559,8 @@ int PluginHost::register_pass(const plab_pass_desc* d) {
     for (const std::string& b : check_material_use(d->material, d->properties, d->property_count)) bad.push_back(b);
     if (!bad.empty()) { problems_.push_back("pass '" + name + "': " + join(bad, "; ")); return 1; }
     if (name_taken(name, "pass")) return 1;
-    passes_[name] = d;
-    pass_lib_[name] = loading_;
+    registry_->passes[name] = d;
+    registry_->pass_lib[name] = loading_;
     return 0;
 }
 
@@ -534,15 +574,15 @@ int PluginHost::register_pass_state(const plab_pass_state_hooks* h) {
         problems_.push_back("register_pass_state: hooks need a pass name, save and load");
         return 1;
     }
-    const auto it = pass_lib_.find(h->pass_name);
-    if (it == pass_lib_.end() || it->second != loading_) {
+    const auto it = registry_->pass_lib.find(h->pass_name);
+    if (it == registry_->pass_lib.end() || it->second != loading_) {
         problems_.push_back(std::string("register_pass_state: '") + h->pass_name + "' is not a pass of this library");
         return 1;
     }
-    plab_pass_state_hooks& c = hook_copies_.emplace_back();
+    plab_pass_state_hooks& c = registry_->hook_copies.emplace_back();
     std::memcpy(&c, h, sizeof(plab_pass_state_hooks));
     c.size = uint32_t(sizeof(plab_pass_state_hooks));
-    pass_state_[h->pass_name] = &c;
+    registry_->pass_state[h->pass_name] = &c;
     return 0;
 }
 
@@ -552,7 +592,7 @@ int PluginHost::register_material(const plab_material_desc* d) {
         problems_.push_back(too_small("a material description", "plab_material_desc", d->size, sizeof(plab_material_desc)));
         return 1;
     }
-    MaterialCopy c;
+    Registry::MaterialCopy c;
     std::memcpy(&c.desc, d, sizeof(plab_material_desc));
     c.desc.size = uint32_t(sizeof(plab_material_desc));
     const std::string name = d->name && *d->name ? d->name : "?";
@@ -567,7 +607,7 @@ int PluginHost::register_material(const plab_material_desc* d) {
     if (!bad.empty()) { problems_.push_back("material '" + name + "': " + join(bad, "; ")); return 1; }
     // a material several libraries (or models of one) register: the same
     // properties each time, declared alike, in the same order
-    if (const auto it = materials_.find(name); it != materials_.end()) {
+    if (const auto it = registry_->materials.find(name); it != registry_->materials.end()) {
         const plab_material_desc& known = *it->second;
         std::string differs;
         if (known.property_count != c.properties.size())
@@ -583,14 +623,14 @@ int PluginHost::register_material(const plab_material_desc* d) {
                 loading_materials_.push_back(name);
             return 0;
         }
-        problems_.push_back("material '" + name + "' is already registered by " + material_lib_[name] +
+        problems_.push_back("material '" + name + "' is already registered by " + registry_->material_lib[name] +
                             " with other properties (" + differs + "); one material, one description");
         return 1;
     }
-    MaterialCopy& m = material_copies_.emplace_back(std::move(c));
+    Registry::MaterialCopy& m = registry_->material_copies.emplace_back(std::move(c));
     m.desc.properties = data_or_null(m.properties);
-    materials_[name] = &m.desc;
-    material_lib_[name] = loading_;
+    registry_->materials[name] = &m.desc;
+    registry_->material_lib[name] = loading_;
     loading_materials_.push_back(name);
     return 0;
 }
@@ -599,8 +639,8 @@ std::vector<std::string> PluginHost::check_material_use(const char* material, co
                                                         uint32_t n) const {
     if (!material) return {};
     if (!*material) return {"material is an empty name (NULL: no material)"};
-    const auto it = materials_.find(material);
-    if (it == materials_.end())
+    const auto it = registry_->materials.find(material);
+    if (it == registry_->materials.end())
         return {std::string("takes its shared properties from the material '") + material +
                 "', which is not registered; register the material before the models and passes that name it "
                 "(plab::add_contact_model and plab::add_pass do), or load the library that declares it first"};
@@ -624,34 +664,34 @@ std::vector<std::string> PluginHost::check_material_use(const char* material, co
 }
 
 const plab_material_desc* PluginHost::material(const std::string& name) const {
-    auto it = materials_.find(name);
-    return it == materials_.end() ? nullptr : it->second;
+    auto it = registry_->materials.find(name);
+    return it == registry_->materials.end() ? nullptr : it->second;
 }
 
 const plab_pass_state_hooks* PluginHost::pass_state(const std::string& name) const {
-    auto it = pass_state_.find(name);
-    return it == pass_state_.end() ? nullptr : it->second;
+    auto it = registry_->pass_state.find(name);
+    return it == registry_->pass_state.end() ? nullptr : it->second;
 }
 
 const plab_contact_model_desc* PluginHost::model(const std::string& name) const {
-    auto it = models_.find(name);
-    return it == models_.end() ? nullptr : it->second;
+    auto it = registry_->models.find(name);
+    return it == registry_->models.end() ? nullptr : it->second;
 }
 
 const plab_pass_desc* PluginHost::pass(const std::string& name) const {
-    auto it = passes_.find(name);
-    return it == passes_.end() ? nullptr : it->second;
+    auto it = registry_->passes.find(name);
+    return it == registry_->passes.end() ? nullptr : it->second;
 }
 
 std::vector<std::string> PluginHost::model_names() const {
     std::vector<std::string> v;
-    for (const auto& [n, d] : models_) v.push_back(n);
+    for (const auto& [n, d] : registry_->models) v.push_back(n);
     return v;
 }
 
 std::vector<std::string> PluginHost::pass_names() const {
     std::vector<std::string> v;
-    for (const auto& [n, d] : passes_) v.push_back(n);
+    for (const auto& [n, d] : registry_->passes) v.push_back(n);
     return v;
 }
 

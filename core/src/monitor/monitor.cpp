@@ -147,7 +147,7 @@ std::string Monitor::non_finite_contact(std::size_t body) const {
             for (std::size_t k = 0; k < set->size(); ++k) {
                 if (!set->active[k] || (std::size_t(set->end1[k]) != body && (set->with_wall || std::size_t(set->end2[k]) != body)))
                     continue;
-                const Vec f(&set->force[3 * k]), m1 = set->moment1_at(k), m2 = set->moment2_at(k);
+                const Vec f(&set->force[3 * k]), m1 = moment1_at(*set, k), m2 = moment2_at(*set, k);
                 if (f.allFinite() && m1.allFinite() && m2.allFinite()) continue;
                 std::ostringstream s;
                 s << "contact model '" << inst->model << "' returned a non-finite force or moment (a contact model returned NaN) for the contact of ball id "
@@ -244,7 +244,7 @@ std::string Monitor::stiffest_model(std::size_t i) const {
             const std::uint32_t k = en.row();
             if (!s.active[k]) continue;
             for (std::size_t m = 0; m < in_.instances.size(); ++m)
-                if (in_.set_owner[en.set] == in_.instances[m].get()) k_of[m] += s.k_t_at(k);
+                if (in_.set_owner[en.set] == in_.instances[m].get()) k_of[m] += k_t_at(s, k);
         }
     const auto top = std::max_element(k_of.begin(), k_of.end());
     return top == k_of.end() || *top <= 0 ? std::string("(none)") : in_.instances[std::size_t(top - k_of.begin())]->model;

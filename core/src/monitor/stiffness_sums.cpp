@@ -31,8 +31,8 @@ void StiffnessSums::sum(const Bodies& bodies, const BodyContacts& contacts, cons
                 } else {
                     arm2 = (Vec(&s.point[3 * k]) - bodies.position[i]).squaredNorm();
                 }
-                kt += s.k_t_at(k);
-                kr += s.k_r_at(k) + s.k_t_at(k) * arm2;
+                kt += k_t_at(s, k);
+                kr += k_r_at(s, k) + k_t_at(s, k) * arm2;
             }
             k_trans_[i] = kt;
             k_rot_[i] = kr;

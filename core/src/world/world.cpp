@@ -64,8 +64,7 @@ int World::add_instance(const std::string& model, std::vector<double> props) {
                            d->fields_accumulated[f].unit));
     inst->walls.with_wall = true;
     for (ContactSet* s : {&inst->balls, &inst->walls}) {
-        s->model_io = d->io;
-        s->model_flags = d->flags;
+        s->model = d;
     }
     cycle->instances.push_back(std::move(inst));
     mark_dirty();
@@ -124,8 +123,8 @@ Vec ContactTable::normal(std::size_t k) const { return row_normal(cycle_->world.
 Vec ContactTable::point(std::size_t k) const { return row_point(cycle_->world.bodies, *set_, k); }
 double ContactTable::gap(std::size_t k) const { return row_gap(cycle_->world.bodies, *set_, k); }
 double ContactTable::end_radius(std::size_t k, bool end2) const { return row_end_radius(cycle_->world.bodies, *set_, k, end2); }
-double ContactTable::stiffness(std::size_t k) const { return set_->k_t_at(k); }
-double ContactTable::dt_limit(std::size_t k) const { return set_->dt_limit_at(k); }
+double ContactTable::stiffness(std::size_t k) const { return k_t_at(*set_, k); }
+double ContactTable::dt_limit(std::size_t k) const { return dt_limit_at(*set_, k); }
 
 const std::string& ModelView::model() const { return instance_->model; }
 const plab_contact_model_desc& ModelView::desc() const { return *instance_->desc; }
