@@ -14,8 +14,14 @@ function(plab_add_plugin name)
   add_library(plab_${name} MODULE ${ARGN})
   target_link_libraries(plab_${name} PRIVATE plab::api)
   target_compile_features(plab_${name} PRIVATE cxx_std_17)
-  # a law's sqrt needs no errno (no test and library call after each one)
-  target_compile_options(plab_${name} PRIVATE $<$<CXX_COMPILER_ID:GNU,Clang>:-fno-math-errno>)
+  # a law's sqrt needs no errno (no test and library call after each one);
+  # the adapter's loop over a batch (contact_model.hpp) vectorises a law's
+  # choices only when both sides may be evaluated (no trapping maths: the
+  # results are the same, only floating-point exception flags are not
+  # kept), and its clones for each CPU give the scalar law's bits only
+  # without FMA contraction
+  target_compile_options(plab_${name} PRIVATE
+    $<$<CXX_COMPILER_ID:GNU,Clang>:-fno-math-errno -fno-trapping-math -ffp-contract=off>)
   # only the two entry points (PLAB_PLUGIN) are exported
   set_target_properties(plab_${name} PROPERTIES PREFIX "" OUTPUT_NAME plab_${name}
     LIBRARY_OUTPUT_DIRECTORY ${PLAB_PLUGIN_OUTPUT_DIR}

@@ -180,7 +180,10 @@ struct Sph {
     }
     // law() on every row of a batch of active rows: the force stage of
     // ball–ball pairs as one loop GCC vectorises (sph_rows); other batches
-    // row by row
+    // row by row. A loop of its own rather than the adapter's over law():
+    // the kernel, the viscosity form, the anti-clump term and whether to
+    // gather the wall corrections are chosen once per batch, as template
+    // arguments of the loop, where law() chooses them per contact.
     void law_rows(const plab_contact_batch& b, std::size_t k0, std::size_t k1) const {
         if (b.stage == PLAB_STAGE_RATES || b.end2_is_wall) {
             for (std::size_t k = k0; k < k1; ++k) law(Contact(b, uint32_t(k)));

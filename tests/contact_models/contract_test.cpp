@@ -327,12 +327,13 @@ TEST_CASE("contract: every active contact reports a positive stable timestep", "
     }
 }
 
-// A model may run a batch whose rows are all active through its own loop
-// (the adapter's law_rows(), e.g. vectorised: `linear`, `sph`); the host's
-// packed batches are such batches. It must give, bit for bit, what the same
-// rows give one by one in a batch that also holds inactive rows: forces,
-// history, energies, stiffness and step limit. Two steps, so that the second
-// starts from a stored shear force (rotated into a turned contact plane),
+// A batch whose rows are all active (the host's packed batches) runs
+// through the adapter's loop over law(), vectorised for a law written as
+// choices (`linear`), or a model's own (law_rows, `sph`). It must give, bit
+// for bit, what the same rows give one by one in a batch that also holds
+// inactive rows: forces, history, energies, stiffness and step limit. Two
+// steps, so that the second starts from a stored shear force (turned by the
+// harness, as by the host, into a turned contact plane),
 // with speeds from sticking to sliding, distances across the activity range,
 // body fields that differ from body to body, in 2D and 3D, for every value of
 // a mode property and with the properties whose default is zero at zero (a

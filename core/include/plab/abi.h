@@ -162,9 +162,11 @@ typedef struct plab_field_desc {
 /* ---- the contact batch --------------------------------------------------- */
 
 /* Host-owned columns for `count` contacts. Vectors are packed xyz triples
- * (3*count doubles); in 2D the z components are zero. Convention: the normal
- * points from end 1 to end 2 and `force` is the force acting ON END 2 (end 1
- * receives -force), as in PFC. */
+ * (3*count doubles); in 2D the z components are zero. No two columns
+ * overlap, so a model may work on several rows at once (only the accumulate
+ * columns of a batch whose sums are not kept may share one scratch column,
+ * see above). Convention: the normal points from end 1 to end 2 and `force`
+ * is the force acting ON END 2 (end 1 receives -force), as in PFC. */
 typedef struct plab_contact_batch {
     uint32_t size;       /* sizeof(plab_contact_batch), set by the host */
     uint32_t dim;        /* 2 or 3 */

@@ -22,21 +22,30 @@
 // `persist_slot` (int) for a model with bonds; `rates_stage` (bool) for a
 // model that accumulates field rates before forces (SPH; see abi.h);
 // `flags` (uint32_t, PLAB_MODEL_* of abi.h) e.g. for a force between centres;
-// `law_rows(const plab_contact_batch&, std::size_t k0, std::size_t k1) const`:
-// the law on rows [k0, k1) when all of them are active (the host's packed
-// batches), e.g. as one loop the compiler can vectorise; it must give what
-// law() gives row by row, bit for bit;
 // `io` (uint32_t, PLAB_IO_* of abi.h): the optional inputs the law reads and
 // outputs it writes, e.g. `PLAB_IO_EFF_MASS` for a law that reads only the
 // effective mass besides normal, gap and relative velocity; the host then
 // skips the rest (PLAB_IO_DECLARED is added for you);
 // `material` (a type, `using material = MyMaterial;`): the material whose
-// properties the model takes from a scene's materials (below).
+// properties the model takes from a scene's materials (below);
+// `law_rows(const plab_contact_batch&, std::size_t k0, std::size_t k1) const`:
+// the model's own loop over rows [k0, k1) when all of them are active, in
+// place of the one the adapter generates from law() (below), for a law that
+// must make choices once per batch rather than per contact (`sph`: its
+// kernel and viscosity forms as template arguments); it must give what
+// law() gives row by row, bit for bit.
 //
 // A history slot whose description has PLAB_HISTORY_TANGENTIAL is the first
 // of three (x, y, z) holding a vector in the contact plane, e.g. a shear
 // force: the host turns it into the current plane before law() reads it
 // (abi.h), so a law adds its increment to the stored vector as it is.
+//
+// The batch loop: the host's packed batches hold active rows only, and on
+// those the adapter runs law() in one loop that the compiler vectorises
+// (law inlined, built for AVX2 and for the build's target). A law written
+// as choices between values (`c ? a : b`, not branches around work) runs
+// several contacts per instruction; any other law runs in the same loop
+// one contact at a time. Every form gives the same bits.
 //
 // A material (abi.h plab_material_desc, ABI 2.1) is a class with the
 // properties the models and passes of a package share:
@@ -75,22 +84,25 @@
 #define PLAB_EXPORT __attribute__((visibility("default")))
 #endif
 
-// A batch loop (law_rows) built for each CPU target listed, the best one
-// picked when the library loads, e.g. PLAB_TARGET_CLONES("avx2", "default").
-// PLAB_TARGET_CLONES_FLAT also inlines every call in the loop (flatten), so
-// that what it calls is built for each target too. Clang refuses
-// target_clones together with flatten; there the loop is built once,
-// flattened, for the build's own target (-march=native by default): the
-// same bits, as the clones use no FMA.
+// A batch loop built for each CPU target listed, the best one picked when
+// the library loads, e.g. PLAB_TARGET_CLONES_FLAT("avx2", "default"), with
+// every call in it inlined (flatten), so that what it calls is built for
+// each target too. Clang refuses target_clones together with flatten;
+// there the loop is built once, flattened, for the build's own target
+// (-march=native by default): the same bits, as the clones use no FMA
+// (plab_add_contact_model builds with -ffp-contract=off).
+// PLAB_ROWS_INDEPENDENT before such a loop: its iterations touch different
+// rows of columns that do not overlap (the host's), so the compiler may run
+// them together without checking the columns' addresses.
 #if defined(__clang__)
-#define PLAB_TARGET_CLONES(...) __attribute__((target_clones(__VA_ARGS__)))
 #define PLAB_TARGET_CLONES_FLAT(...) __attribute__((flatten))
+#define PLAB_ROWS_INDEPENDENT _Pragma("clang loop vectorize(assume_safety)")
 #elif defined(__GNUC__)
-#define PLAB_TARGET_CLONES(...) __attribute__((target_clones(__VA_ARGS__)))
 #define PLAB_TARGET_CLONES_FLAT(...) __attribute__((target_clones(__VA_ARGS__), flatten))
+#define PLAB_ROWS_INDEPENDENT _Pragma("GCC ivdep")
 #else
-#define PLAB_TARGET_CLONES(...)
 #define PLAB_TARGET_CLONES_FLAT(...)
+#define PLAB_ROWS_INDEPENDENT
 #endif
 
 namespace plab {
@@ -164,6 +176,14 @@ template <class Mat> int add_material(const plab_registrar* r) {
     return r->register_material(r->host, material_desc<Mat>());
 }
 
+namespace detail {
+// Row k of a column of xyz triples (abi.h: vectors are packed triples).
+inline Vec3 row3(const double* col, uint32_t k) { return {col[3 * k], col[3 * k + 1], col[3 * k + 2]}; }
+inline void put_row3(double* col, uint32_t k, const Vec3& v) {
+    col[3 * k] = v.x; col[3 * k + 1] = v.y; col[3 * k + 2] = v.z;
+}
+} // namespace detail
+
 // One contact of a batch: typed access to the host's columns at index k.
 class Contact {
 public:
@@ -177,12 +197,12 @@ public:
     // true in the rates stage of a model with `rates_stage` (abi.h)
     bool rates_stage() const { return b_.stage == PLAB_STAGE_RATES; }
 
-    Vec3 normal() const { return load(b_.normal); }
+    Vec3 normal() const { return detail::row3(b_.normal, k_); }
     double gap() const { return b_.gap[k_]; }
     double overlap() const { return -b_.gap[k_]; }
     double distance() const { return b_.distance[k_]; }
-    Vec3 rel_velocity() const { return load(b_.rel_velocity); }
-    Vec3 rel_angular_velocity() const { return load(b_.rel_angular_velocity); }
+    Vec3 rel_velocity() const { return detail::row3(b_.rel_velocity, k_); }
+    Vec3 rel_angular_velocity() const { return detail::row3(b_.rel_angular_velocity, k_); }
     double radius1() const { return b_.radius1[k_]; }
     double radius2() const { return b_.radius2[k_]; }
     double mass1() const { return b_.mass1[k_]; }
@@ -211,9 +231,9 @@ public:
     void accumulate2(int f, double v) const { b_.accumulate2[f][k_] += v; }
 
     // force acting on end 2 (end 1 receives the opposite), N
-    void set_force(const Vec3& f) const { store(b_.force, f); }
-    void set_moment1(const Vec3& m) const { store(b_.moment1, m); }
-    void set_moment2(const Vec3& m) const { store(b_.moment2, m); }
+    void set_force(const Vec3& f) const { detail::put_row3(b_.force, k_, f); }
+    void set_moment1(const Vec3& m) const { detail::put_row3(b_.moment1, k_, m); }
+    void set_moment2(const Vec3& m) const { detail::put_row3(b_.moment2, k_, m); }
     void set_strain_energy(double e) const { b_.strain_energy[k_] = e; }
     void add_slip_energy(double e) const { b_.slip_energy[k_] += e; }
     void add_dashpot_energy(double e) const { b_.dashpot_energy[k_] += e; }
@@ -229,10 +249,6 @@ public:
     void add_break_energy(double e) const { b_.break_energy[k_] += e; }
 
 private:
-    Vec3 load(const double* col) const { return {col[3 * k_], col[3 * k_ + 1], col[3 * k_ + 2]}; }
-    void store(double* col, const Vec3& v) const {
-        col[3 * k_] = v.x; col[3 * k_ + 1] = v.y; col[3 * k_ + 2] = v.z;
-    }
     const plab_contact_batch& b_;
     uint32_t k_;
 };
@@ -274,6 +290,30 @@ template <class M> void* create(const double* props) noexcept {
 }
 template <class M> void destroy(void* p) noexcept { delete static_cast<M*>(p); }
 
+// law() on rows [k0, k1) of a batch whose rows are all active (the host's
+// packed batches): one loop over the rows, with the law inlined into it,
+// which the compiler vectorises where the law is written as choices between
+// values. The history stride is made the model's slot count, a constant,
+// where the host's is that (it always is): then a contact's slots are a
+// fixed pattern of loads, not one gather per slot. Built for AVX2 and for
+// the build's own target (four contacts per instruction on AVX2).
+template <class M>
+PLAB_TARGET_CLONES_FLAT("avx2", "default") void law_on_rows(const M& model, const plab_contact_batch& b, uint32_t k0,
+                                                            uint32_t k1) {
+    const auto rows = [&](const plab_contact_batch& batch) {
+        PLAB_ROWS_INDEPENDENT
+        for (uint32_t k = k0; k < k1; ++k) model.law(Contact(batch, k));
+    };
+    constexpr uint32_t slots = [] {
+        if constexpr (has_history<M>::value) return count_of(M::history);
+        return 0u;
+    }();
+    if (b.history_stride != slots) return rows(b);
+    plab_contact_batch fixed = b;
+    fixed.history_stride = slots;
+    rows(fixed);
+}
+
 // The batch loop: inactive contacts get their history reset to the declared
 // defaults (a separated contact is forgotten); active ones run the law. The
 // rows are first sorted into the two kinds without a branch per row: the
@@ -289,25 +329,21 @@ template <class M> int compute(void* inst, const double*, const plab_contact_bat
         for (uint32_t k0 = 0; k0 < b->count; k0 += chunk) {
             const uint32_t k1 = b->count - k0 < chunk ? b->count : k0 + chunk;
             // a packed batch (the host's dense path) holds active rows only:
-            // then the list is the rows in order, without a test per row
+            // those go through the loop over the rows, without a list
             uint32_t n_active = 0, n_inactive = 0;
             for (uint32_t k = k0; k < k1; ++k) n_inactive += b->active[k] == 0;
             if (n_inactive == 0) {
-                if constexpr (has_law_rows<M>::value) {  // the model's own loop over the rows
-                    model.law_rows(*b, k0, k1);
-                    continue;
-                }
-                for (uint32_t k = k0; k < k1; ++k) active[k - k0] = k;
-                n_active = k1 - k0;
-            } else {
-                n_inactive = 0;
-                for (uint32_t k = k0; k < k1; ++k) {
-                    const bool a = b->active[k] != 0;
-                    active[n_active] = k;
-                    inactive[n_inactive] = k;
-                    n_active += a;
-                    n_inactive += !a;
-                }
+                if constexpr (has_law_rows<M>::value) model.law_rows(*b, k0, k1);  // the model's own loop
+                else law_on_rows(model, *b, k0, k1);
+                continue;
+            }
+            n_inactive = 0;
+            for (uint32_t k = k0; k < k1; ++k) {
+                const bool a = b->active[k] != 0;
+                active[n_active] = k;
+                inactive[n_inactive] = k;
+                n_active += a;
+                n_inactive += !a;
             }
             if constexpr (has_history<M>::value)
                 for (uint32_t r = 0; r < n_inactive; ++r) {

@@ -12,14 +12,6 @@ namespace {
 
 using plab::Contact;
 
-// The batch loop built twice, for SSE2 and for AVX2 (picked once at load
-// time): four contacts per instruction where the CPU has AVX2. No FMA in
-// either, so both give the same bits.
-PLAB_TARGET_CLONES("avx2", "default") void linear_rows(const plab::linear_law::Params& p, const plab_contact_batch& b,
-                                                      std::size_t k0, std::size_t k1, int shear_slot, double stiffness) {
-    plab::linear_law::apply_rows(p, b, k0, k1, shear_slot, stiffness);
-}
-
 struct Linear {
     static constexpr const char* name = "linear";
     static constexpr const char* doc =
@@ -59,10 +51,6 @@ struct Linear {
         c.set_force(plab::linear_law::apply(law_, c, shear_force_x, strain));
         c.set_strain_energy(strain);
         c.set_stiffness(stiffness());
-    }
-    // law() on every row of a batch of active rows, as one vectorised loop
-    void law_rows(const plab_contact_batch& b, std::size_t k0, std::size_t k1) const {
-        linear_rows(law_, b, k0, k1, shear_force_x, stiffness());
     }
 
 private:
