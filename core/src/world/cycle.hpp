@@ -41,7 +41,7 @@ public:
 
     World& world;  // the state it runs on (plab_host/world.hpp)
 
-    // ---- what the World's functions of the same names do ----
+    // ---- what the World's functions of the same names do, and the restart ----
     void step();
     void prepare();
     bool at_last_good() const { return at_last_good_; }
@@ -59,8 +59,9 @@ public:
     bool prepared = false;             // forces are those of the current scene (prepare())
 
 private:
-    // the contact tables in one list, instance m's balls at 2m, walls at 2m + 1
-    ContactTables tables;  // every table in one list, their buffers, each body's rows
+    // every table in one list (instance m's balls at 2m, walls at 2m + 1),
+    // their history-carry buffers, each body's rows
+    ContactTables tables;
     LastGoodState last_good_;
     bool at_last_good_ = false;
     Leapfrog leapfrog_;  // the law of motion; 1/m and 1/I cached by prepare()

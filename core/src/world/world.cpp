@@ -35,6 +35,7 @@ void World::set_skin(double skin) { cycle->neighbours.skin = skin; }
 void World::step() { cycle->step(); }
 void World::prepare() { cycle->prepare(); }
 void World::mark_dirty() { cycle->mark_dirty(); }
+
 int World::add_instance(const std::string& model, std::vector<double> props) {
     const plab_contact_model_desc* d = cycle->host->model(model);
     if (!d) throw InputError("", "contact model '" + model + "' is not loaded");
