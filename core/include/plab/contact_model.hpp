@@ -179,6 +179,11 @@ template <class Mat> int add_material(const plab_registrar* r) {
 namespace detail {
 // Row k of a column of xyz triples (abi.h: vectors are packed triples).
 inline Vec3 row3(const double* col, uint32_t k) { return {col[3 * k], col[3 * k + 1], col[3 * k + 2]}; }
+// ... of a vector in the plane of a 2D world (a normal, a velocity): its z
+// is zero (abi.h), which the loop over a 2D batch then knows without a load.
+inline Vec3 planar_row3(const double* col, uint32_t k, uint32_t dim) {
+    return {col[3 * k], col[3 * k + 1], dim == 2 ? 0.0 : col[3 * k + 2]};
+}
 inline void put_row3(double* col, uint32_t k, const Vec3& v) {
     col[3 * k] = v.x; col[3 * k + 1] = v.y; col[3 * k + 2] = v.z;
 }
@@ -197,11 +202,11 @@ public:
     // true in the rates stage of a model with `rates_stage` (abi.h)
     bool rates_stage() const { return b_.stage == PLAB_STAGE_RATES; }
 
-    Vec3 normal() const { return detail::row3(b_.normal, k_); }
+    Vec3 normal() const { return detail::planar_row3(b_.normal, k_, b_.dim); }
     double gap() const { return b_.gap[k_]; }
     double overlap() const { return -b_.gap[k_]; }
     double distance() const { return b_.distance[k_]; }
-    Vec3 rel_velocity() const { return detail::row3(b_.rel_velocity, k_); }
+    Vec3 rel_velocity() const { return detail::planar_row3(b_.rel_velocity, k_, b_.dim); }
     Vec3 rel_angular_velocity() const { return detail::row3(b_.rel_angular_velocity, k_); }
     double radius1() const { return b_.radius1[k_]; }
     double radius2() const { return b_.radius2[k_]; }
@@ -293,14 +298,19 @@ template <class M> void destroy(void* p) noexcept { delete static_cast<M*>(p); }
 // law() on rows [k0, k1) of a batch whose rows are all active (the host's
 // packed batches): one loop over the rows, with the law inlined into it,
 // which the compiler vectorises where the law is written as choices between
-// values. The history stride is made the model's slot count, a constant,
-// where the host's is that (it always is): then a contact's slots are a
-// fixed pattern of loads, not one gather per slot. Built for AVX2 and for
-// the build's own target (four contacts per instruction on AVX2).
+// values. Each loop has the dimension and the history stride as constants
+// (the stride is the model's slot count where the host's is that, as it
+// always is): then a contact's slots are a fixed pattern of loads, not one
+// gather per slot, and in 2D the z of its normal and relative velocity is a
+// known zero (planar_row3), whose terms the compiler drops where the bits
+// allow. Built for AVX2 and for the build's own target (four contacts per
+// instruction on AVX2).
 template <class M>
 PLAB_TARGET_CLONES_FLAT("avx2", "default") void law_on_rows(const M& model, const plab_contact_batch& b, uint32_t k0,
                                                             uint32_t k1) {
-    const auto rows = [&](const plab_contact_batch& batch) {
+    const auto rows = [&](plab_contact_batch& batch, uint32_t dim, uint32_t stride) {
+        batch.dim = dim;
+        batch.history_stride = stride;
         PLAB_ROWS_INDEPENDENT
         for (uint32_t k = k0; k < k1; ++k) model.law(Contact(batch, k));
     };
@@ -308,10 +318,10 @@ PLAB_TARGET_CLONES_FLAT("avx2", "default") void law_on_rows(const M& model, cons
         if constexpr (has_history<M>::value) return count_of(M::history);
         return 0u;
     }();
-    if (b.history_stride != slots) return rows(b);
-    plab_contact_batch fixed = b;
-    fixed.history_stride = slots;
-    rows(fixed);
+    plab_contact_batch fixed = b;  // (with the constants of each loop below)
+    const bool planar = b.dim == 2;
+    if (b.history_stride != slots) return planar ? rows(fixed, 2u, b.history_stride) : rows(fixed, 3u, b.history_stride);
+    planar ? rows(fixed, 2u, slots) : rows(fixed, 3u, slots);
 }
 
 // The batch loop: inactive contacts get their history reset to the declared
