@@ -291,7 +291,7 @@ std::string flag_problems(std::initializer_list<uint32_t> flags) {
 }
 } // namespace
 
-TEST_CASE("a tangential history vector is three slots, x, y and z; other flags are refused", "[host]") {
+TEST_CASE("a tangential history vector is three slots, x, y and z, and flags the host does not know are refused", "[host]") {
     CHECK(flag_problems({PLAB_HISTORY_TANGENTIAL, 0, 0}).empty());
     CHECK_THAT(flag_problems({0, PLAB_HISTORY_TANGENTIAL, 0}),
                Contains("history slot 1 is flagged tangential, the x of a vector, but fewer than two slots follow it"));
