@@ -297,7 +297,11 @@ void describe(const PluginHost& host, const std::string& name) {
         std::cout << "  history slots:\n";
         for (uint32_t h = 0; h < d->history_count; ++h)
             std::cout << "    " << d->history[h].name << " (default " << d->history[h].default_value << ", "
-                      << (d->history[h].swap_rule == PLAB_SWAP_NEGATE ? "negated" : "kept") << " when ends swap)\n";
+                      << (d->history[h].swap_rule == PLAB_SWAP_NEGATE ? "negated" : "kept") << " when ends swap"
+                      << (d->history[h].flags & PLAB_HISTORY_TANGENTIAL
+                              ? "; with the next two, a vector in the contact plane, turned with it by the host"
+                              : "")
+                      << ")\n";
         for (uint32_t f = 0; f < d->fields_read_count; ++f) std::cout << "  reads body field " << d->fields_read[f].name << "\n";
         return;
     }

@@ -9,10 +9,15 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <string>
 
 using namespace plab;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -107,4 +112,21 @@ TEST_CASE("the host's turn of tangential history: in the plane, magnitude kept, 
         CHECK(now.norm() == Approx(old.norm()).epsilon(1e-14));
         CHECK((now - (old - old.dot(nv) * nv)).norm() <= old.norm() * std::fabs(old.normalized().dot(nv)) + 1e-15);
     }
+}
+
+TEST_CASE("plab plugins --describe names the tangential history a model declares", "[forces][history][cli]") {
+    const fs::path out = fs::temp_directory_path() / "plab_describe_linear.txt";
+    const std::string cmd = std::string(PLAB_EXE) + " plugins --describe linear > " + out.string() + " 2>&1";
+    REQUIRE(std::system(cmd.c_str()) == 0);
+    std::ifstream f(out);
+    std::string line, x_line, y_line;
+    while (std::getline(f, line)) {
+        if (line.find("shear_force_x (") != std::string::npos) x_line = line;
+        if (line.find("shear_force_y (") != std::string::npos) y_line = line;
+    }
+    fs::remove(out);
+    INFO(x_line << "\n" << y_line);
+    CHECK(x_line.find("a vector in the contact plane, turned with it by the host") != std::string::npos);
+    CHECK(!y_line.empty());
+    CHECK(y_line.find("contact plane") == std::string::npos);  // (the flag is on the vector's first slot only)
 }
