@@ -28,13 +28,13 @@ struct ContactSet {
     // model gets them packed, forces/packed_batch.hpp) and hold stale values. Those
     // of a PLAB_MODEL_FORCE_AT_CENTRES model (centre_force_batch.cpp) write
     // back force and dt_limit only: moments, stiffness and energies stay
-    // zero. A `packed` set (Cycle::packs_balls: dense, and no model of the
+    // zero. A `packed` set (ForcePipeline::packs_balls: dense, and no model of the
     // world runs a rates stage over the full columns) does not even allocate distance, rel_velocity,
     // rel_angular_velocity, radius1, radius2, mass1, mass2, eff_mass,
     // eff_radius, strain, slip, dashpot and break_energy, nor gap, normal
     // and point: readers recompute those three from the positions
-    // (Cycle::contact_gap/contact_normal/contact_point), and take the radii
-    // from the bodies (Cycle::end_radius). ~200 B per row less.
+    // (forces/geometry.hpp row_gap, row_normal, row_point), and take the radii
+    // from the bodies (row_end_radius). ~200 B per row less.
     bool packed = false;
     std::vector<std::uint8_t> active, interior;
     std::vector<double> normal, gap, distance, rel_velocity, rel_angular_velocity, point;
@@ -43,10 +43,10 @@ struct ContactSet {
     std::vector<double> force, moment1, moment2, strain, slip, dashpot, k_t, k_r, dt_limit, break_energy;
     std::vector<std::vector<double>> acc1, acc2;
     // per batch of kContactBatch rows: strain, slip, dashpot, bond-break
-    // energy and wall power of the active rows (Cycle::scatter_rows)
+    // energy and wall power of the active rows (Reduction::scatter_rows)
     std::vector<double> batch_energy;
     bool overlap_exceeded = false;  // an active contact overlaps beyond its model's max_overlap (geometry())
-    bool forces_zero = false;       // force zero and no step limit in every row (Cycle::hold_still)
+    bool forces_zero = false;       // force zero and no step limit in every row (forces/still_instances.hpp hold_still)
 
     std::size_t size() const { return end1.size(); }
     void resize_columns(std::size_t n, int n_accumulated);

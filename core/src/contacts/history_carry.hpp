@@ -29,7 +29,7 @@ struct CarryContext {
     const Bodies& bodies;
     const Walls& walls;
     std::size_t parallel_min;
-    bool lean;              // a lean rebuild (Cycle::lean_rebuild_rows): nothing kept twice
+    bool lean;              // a lean rebuild (World::lean_rebuild_rows): nothing kept twice
     std::size_t lean_rows;  // a list longer than this frees its buffers all the same
     // the old rows and the pairs go before the columns come
     bool frees_buffers(std::size_t rows) const { return lean || rows > lean_rows; }

@@ -20,7 +20,7 @@ namespace {
 template <int Dim>
 bool pack_centre_loop(const Bodies& B, const ContactSet& s, const OptionalInputs& optional, double max_overlap,
                       std::size_t n_active, DenseBatch& d) {
-    // (no contact point: readers recompute it, Cycle::contact_point; no spin)
+    // (no contact point: readers recompute it, ContactTable::point; no spin)
     return pack_rows(B, s, optional, max_overlap, n_active, d,
                      [&](std::size_t a, std::int32_t i, std::int32_t j, double, double dist, double) {
                          if (Dim == 2) {
@@ -76,7 +76,7 @@ bool ForcePipeline::pack_centre_rows(const ModelInstance& inst, std::uint32_t si
 
 // Back from the packed rows of batch [begin, end): history and force to
 // the set's columns (their readers: outputs, stress; the force only on a
-// step whose forces are read, Cycle::contact_forces_wanted), the
+// step whose forces are read, World::contact_forces_wanted), the
 // batch's least step limit to PackedTable::limits (the stable step), and
 // each row's force added, in row order, to the chunk's partial sums: -F on
 // end 1, +F on end 2, no moment.

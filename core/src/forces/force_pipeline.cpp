@@ -288,7 +288,7 @@ bool ForcePipeline::field_computed(int f) const {
 // ones a model reads that no pass declares and no model accumulates
 // (nothing in the cycle writes them) and whose values are the default now.
 // A scan each force pass, not a flag kept: a value set from outside
-// (Cycle::field(), a checkpoint) counts at once.
+// (a command that sets a field, a checkpoint) counts at once.
 void ForcePipeline::find_fields_at_default() {
     std::vector<std::uint8_t>& at_default = field_at_default_;  // first the candidates (no allocation in the cycle)
     at_default.assign(in_.fields.size(), 0);

@@ -46,7 +46,7 @@ struct RangeTest {
 };
 
 // The surface gap of two balls at centre distance dist: every ball–ball
-// path (the range test, both packers, Cycle::contact_gap) takes it from
+// path (the range test, both packers, row_gap) takes it from
 // here, so a gap recomputed for a reader has the range test's bits.
 inline double surface_gap(double dist, double ri, double rj) { return dist - ri - rj; }
 

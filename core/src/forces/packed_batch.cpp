@@ -297,8 +297,8 @@ void write_back(double* col, std::size_t width, const double* dense, const Dense
 // Back from the packed rows of batch [begin, end): history, and what the
 // readers of the contact columns use (force, moments, stiffnesses, step
 // limit: outputs, stress, stable step, bond breaks, checkpoints; normal and
-// point they recompute, Cycle::contact_point; the force only on a step
-// whose forces are read, Cycle::contact_forces_wanted); then each row's
+// point they recompute, ContactTable::point; the force only on a step
+// whose forces are read, World::contact_forces_wanted); then each row's
 // force and moments added to the chunk's partial sums, and the batch's
 // energy sums, as scatter_rows() does for full columns.
 void ForcePipeline::unpack_rows(std::uint32_t si, const ModelInstance& inst, const DenseBatch& d, std::size_t begin,

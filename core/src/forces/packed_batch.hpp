@@ -4,8 +4,8 @@
 // cache, spares the host writing (and the model reading back) the inputs and
 // outputs of every candidate row in full-length columns. `row` leads back to
 // the persistent contact row, which keeps the history and what readers of
-// the contact columns need (Cycle::force_sweep(); the force only on the
-// steps that read it, Cycle::contact_forces_wanted).
+// the contact columns need (ForcePipeline::force_sweep(); the force only on the
+// steps that read it, World::contact_forces_wanted).
 #pragma once
 
 #include "forces/geometry.hpp"
@@ -90,7 +90,7 @@ inline void copy3(double* to, std::size_t k, const double* from, std::size_t a) 
 }
 
 // The packed rows' forces to the set's column: all of them on a step whose
-// forces are read (Cycle::contact_forces_wanted); on another, only a batch
+// forces are read (World::contact_forces_wanted); on another, only a batch
 // with a non-finite force, which the NaN diagnostic looks for there.
 inline void write_forces(ContactSet& s, const DenseBatch& d, bool read) {
     if (!read) {

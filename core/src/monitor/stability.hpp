@@ -25,7 +25,7 @@ struct StabilityBaseline {
 };
 
 // The generic checks, each a Diagnostic with an empty quantity when it
-// passes. The overlap check reads the contact tables (Cycle::check_overlaps).
+// passes. The overlap check reads the contact tables (Monitor::check_overlaps).
 class InstabilityDetector {
 public:
     StabilityLimits limits;
