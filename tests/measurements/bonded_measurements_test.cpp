@@ -128,7 +128,7 @@ TEST_CASE("linear_first_break gives the load at which a bond reaches its strengt
     }
 }
 
-TEST_CASE("first_bond_break says where, when and how the first bond broke; NaN before", "[measurements][bonds]") {
+TEST_CASE("first_bond_break says where, when and how the first bond broke, NaN before any", "[measurements][bonds]") {
     const double v = 0.01, kn_bar = 1e9, sigma_c = 1e6;
     auto sim = bonded_pair({v, 0.0}, sigma_c, 1e300);
     World& w = sim->world();

@@ -128,7 +128,7 @@ std::pair<double, double> strength_use_under_uniaxial_stress(const std::string& 
 } // namespace
 
 TEST_CASE("bond strengths calibrated across the bonds (thesis eqs. 43-46) are reached at sigma_ult across the "
-          "rows and at (3 - nu)/4 sigma_ult along them; the along_bonds rule swaps that", "[bonds][calibration]") {
+          "rows and at (3 - nu)/4 sigma_ult along them, and the along_bonds rule swaps that", "[bonds][calibration]") {
     const double nu = 0.3, weak = (3 - nu) / 4;
     const auto across_y = strength_use_under_uniaxial_stress("across_bonds", false);
     CHECK(across_y.first == Approx(1.0).epsilon(0.01));   // the +-60 degree bonds, 30 degrees from y

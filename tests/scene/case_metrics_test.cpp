@@ -47,7 +47,7 @@ double figure(const json& metrics, const Simulation& sim, const std::string& dir
 
 } // namespace
 
-TEST_CASE("time_mean weights each sample by the time since the one before it; mean counts samples", "[metrics]") {
+TEST_CASE("time_mean weights each sample by the time since the one before it, and mean counts samples", "[metrics]") {
     Simulation sim(falling_ball());
     sim.set_quiet(true);
     World& w = sim.world();

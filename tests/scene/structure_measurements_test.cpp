@@ -58,7 +58,7 @@ TEST_CASE("ball_displacement names the path of a bad component or an empty group
     CHECK_THROWS_WITH(Simulation(no_balls), Contains("scene.histories.record[1].with.group") && Contains("nobody"));
 }
 
-TEST_CASE("strip_top is the highest centre of the group in [x_min, x_max), 0 in an empty strip", "[measurements]") {
+TEST_CASE("strip_top is the highest centre of the group from x_min up to but not including x_max, 0 in an empty strip", "[measurements]") {
     const std::vector<json> bodies = {ball("fluid", 0.05, 0.3), ball("fluid", 0.15, 0.5), ball("fluid", 0.25, 0.7), ball("other", 0.15, 0.9)};
     auto strip = [](const std::string& name, double lo, double hi) {
         return json{{"name", name}, {"quantity", "measure.strip_top"}, {"with", {{"group", "fluid"}, {"x_min", lo}, {"x_max", hi}}}};
