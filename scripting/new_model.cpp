@@ -53,6 +53,10 @@ struct @CLASS@ {
     static constexpr const char* doc = "Damped linear normal spring, no tension by default (skeleton from plab new-model).";
     static constexpr const char* timestep_rule = "per ball sqrt(m / sum k) over its contacts";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    // What the law reads besides normal, gap, relative velocity, history and
+    // dt, and writes besides force, energies and stiffness (abi.h PLAB_IO_*):
+    // the host packs only these for it.
+    static constexpr uint32_t io = PLAB_IO_EFF_MASS;
 
     // Every property, by kind (plab/contact_model.hpp, plab::prop): number
     // (scene key, name, SI unit, default, valid range, flags, doc, and how

@@ -26,6 +26,7 @@ struct MaterialSpring {
     static constexpr const char* doc = "test spring whose k a scene material gives";
     static constexpr const char* timestep_rule = "sqrt(m/k)";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    static constexpr uint32_t io = 0;
     using material = ProbeSolid;
     static constexpr plab_property_desc properties[] = {
         plab::prop::number("c", "dashpot", "N s/m", 0.0, 0.0, inf, PLAB_MAX_EXCLUSIVE, "not the material's", PLAB_MIX_MAX),

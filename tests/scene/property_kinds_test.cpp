@@ -218,6 +218,7 @@ struct ModeSpring {
     static constexpr const char* doc = "test";
     static constexpr const char* timestep_rule = "sqrt(m/k)";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    static constexpr uint32_t io = 0;
     static constexpr plab_property_desc properties[] = {
         plab::prop::choice("mode", "spring mode", probe_modes, 1, "off, on, twice"),
         plab::prop::boolean("flip", "flip", false, "negate the force"),

@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 #define PLAB_ABI_MAJOR 2u
-#define PLAB_ABI_MINOR 2u
+#define PLAB_ABI_MINOR 3u
 /* what plab_plugin_abi_version() returns: major << 16 | minor (ABI 1
  * returned its plain version number, 1 to 7, whose major reads as 0) */
 #define PLAB_ABI_VERSION ((PLAB_ABI_MAJOR << 16) | PLAB_ABI_MINOR)
@@ -274,7 +274,7 @@ typedef struct plab_contact_model_desc {
     uint32_t rates_stage;
     /* PLAB_MODEL_* bits */
     uint32_t flags;
-    /* PLAB_IO_* bits (0: every input and output, see below) */
+    /* PLAB_IO_* bits, PLAB_IO_DECLARED among them (mandatory, see below) */
     uint32_t io;
     /* ABI 2.1: the name of the material (plab_material_desc) whose
      * properties this model takes from a scene's materials, or NULL: it takes
@@ -286,13 +286,13 @@ typedef struct plab_contact_model_desc {
 /* `io`: what a model reads and writes beyond what every model
  * gets (end1, end2, active, normal, gap, distance, rel_velocity, history,
  * dt, body fields) and must write (force; strain, slip and dashpot energy and
- * stiffness_translational, zeroed by the host). Without PLAB_IO_DECLARED
- * the host provides and reads back everything. With it,
- * the host skips the inputs and outputs not named: an input not named is
- * not computed (it may hold NaN), an output not named is neither zeroed nor
- * read (pure moments and rotational stiffness count as zero, dt_limit as
- * no limit, break energy as zero). Before the first step the host calls the
- * model once on a touching contact whose undeclared inputs are NaN and
+ * stiffness_translational, zeroed by the host). The declaration is
+ * mandatory: the host refuses a model whose `io` lacks PLAB_IO_DECLARED
+ * (PLAB_IO_DECLARED alone declares nothing optional). An input not named
+ * is not computed (it may hold NaN), an output not named is neither zeroed
+ * nor read (pure moments and rotational stiffness count as zero, dt_limit
+ * as no limit, break energy as zero). Before the first step the host calls
+ * the model once on a touching contact whose undeclared inputs are NaN and
  * undeclared outputs are NaN sentinels, and refuses it, naming the column,
  * if the force turns NaN or a sentinel is overwritten. */
 #define PLAB_IO_DECLARED (1u << 31)

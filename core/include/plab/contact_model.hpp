@@ -11,21 +11,25 @@
 //       static constexpr plab_property_desc properties[] = {plab::prop::number(...), ...};
 //       enum Slot : int { ..., slot_count };            // history slots
 //       static constexpr plab_history_desc history[] = {plab::history_desc(...), ...};  // slot_count entries
+//       static constexpr uint32_t io = PLAB_IO_EFF_MASS;  // optional inputs read, outputs written (0: none)
 //       static double activity_range(const double* props);
 //       explicit MyModel(const double* props);
 //       void law(plab::Contact& c) const;
 //   };
 //   PLAB_PLUGIN(plab::add_contact_model<MyModel>(r))
 //
+// `io` names what the law reads beyond normal, gap, distance, relative
+// velocity, history and dt (PLAB_IO_RADII, _MASSES, _EFF_MASS, _EFF_RADIUS,
+// _REL_ANGULAR_VELOCITY) and writes beyond the force, energies and
+// translational stiffness (PLAB_IO_MOMENTS, _STIFFNESS_ROTATIONAL,
+// _DT_LIMIT, _BREAK_ENERGY). The host packs only those columns, and before
+// the first step refuses a law that reads or writes one it does not name.
+//
 // Optional members: `fields_read[]`, `fields_accumulated[]`
 // (plab_field_desc arrays) to read body fields / accumulate into them;
 // `persist_slot` (int) for a model with bonds; `rates_stage` (bool) for a
 // model that accumulates field rates before forces (SPH; see abi.h);
 // `flags` (uint32_t, PLAB_MODEL_* of abi.h) e.g. for a force between centres;
-// `io` (uint32_t, PLAB_IO_* of abi.h): the optional inputs the law reads and
-// outputs it writes, e.g. `PLAB_IO_EFF_MASS` for a law that reads only the
-// effective mass besides normal, gap and relative velocity; the host then
-// skips the rest (PLAB_IO_DECLARED is added for you);
 // `material` (a type, `using material = MyMaterial;`): the material whose
 // properties the model takes from a scene's materials (below);
 // `law_rows(const plab_contact_batch&, std::size_t k0, std::size_t k1) const`:
@@ -375,6 +379,9 @@ template <class M> int compute(void* inst, const double*, const plab_contact_bat
 
 // The C description of model M (static storage: valid while the library is loaded).
 template <class M> const plab_contact_model_desc* contact_model_desc() {
+    static_assert(detail::has_io<M>::value,
+                  "a contact model declares its optional inputs and outputs: static constexpr uint32_t io = "
+                  "PLAB_IO_... | ...; (0 for none; abi.h PLAB_IO_*)");
     static const plab_contact_model_desc d = [] {
         plab_contact_model_desc x{};
         x.size = sizeof(plab_contact_model_desc);
@@ -404,7 +411,7 @@ template <class M> const plab_contact_model_desc* contact_model_desc() {
         if constexpr (detail::has_persist<M>::value) x.persist_slot = M::persist_slot;
         if constexpr (detail::has_rates<M>::value) x.rates_stage = M::rates_stage ? 1u : 0u;
         if constexpr (detail::has_flags<M>::value) x.flags = M::flags;
-        if constexpr (detail::has_io<M>::value) x.io = M::io | PLAB_IO_DECLARED;
+        if constexpr (detail::has_io<M>::value) x.io = M::io | PLAB_IO_DECLARED;  // (else the assertion above)
         if constexpr (detail::has_material<M>::value) x.material = M::material::name;
         return x;
     }();

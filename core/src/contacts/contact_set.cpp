@@ -8,8 +8,7 @@ bool ContactSet::keeps(std::uint32_t io_bit) const {
     if (!packed || !model) return true;
     // no moment, no stiffness; step limits per batch (PackedTable::limits, forces/packed_tables.hpp)
     if (model->flags & PLAB_MODEL_FORCE_AT_CENTRES) return false;
-    const bool written = !(model->io & PLAB_IO_DECLARED) || (model->io & io_bit);
-    return io_bit == 0 || written;
+    return io_bit == 0 || (model->io & io_bit);
 }
 
 void ContactSet::resize_columns(std::size_t n, int n_acc) {

@@ -29,7 +29,7 @@ struct ModelInstance {
     double property(const std::string& name) const;
     // whether the model reads optional input / writes optional output
     // `bit` (PLAB_IO_*): all of them unless it declared which (abi.h, io)
-    bool uses(std::uint32_t bit) const { return !(desc->io & PLAB_IO_DECLARED) || (desc->io & bit); }
+    bool uses(std::uint32_t bit) const { return (desc->io & bit) != 0; }
 };
 
 using Instances = std::vector<std::unique_ptr<ModelInstance>>;

@@ -306,6 +306,10 @@ std::vector<std::string> check_model_desc(const plab_contact_model_desc& d) {
         bad.push_back("persist_slot must be -1 or the index of a history slot");
     if (d.flags & ~uint32_t(PLAB_MODEL_KNOWN_FLAGS)) bad.push_back("flags has bits this host does not know (abi.h PLAB_MODEL_*)");
     if (d.io & ~uint32_t(PLAB_IO_KNOWN_BITS)) bad.push_back("io has bits this host does not know (abi.h PLAB_IO_*)");
+    if (!(d.io & PLAB_IO_DECLARED))
+        bad.push_back("does not declare its io (PLAB_IO_DECLARED not set): name the optional inputs it reads and "
+                      "outputs it writes, PLAB_IO_DECLARED alone for none (abi.h PLAB_IO_*; in C++ "
+                      "`static constexpr uint32_t io = ...;`)");
     for (uint32_t i = 0; d.history && i < d.history_count; ++i) {
         if (!d.history[i].name || !*d.history[i].name) bad.push_back("history slot " + std::to_string(i) + " has no name");
         if (d.history[i].swap_rule > PLAB_SWAP_NEGATE)

@@ -25,7 +25,6 @@ struct Probe {
 // undeclared outputs must still hold their NaN sentinels.
 template <class Outputs>
 void check_declared_io(const ModelInstance& inst, const double* force, const Outputs& outputs) {
-    if (!(inst.desc->io & PLAB_IO_DECLARED)) return;
     const std::string who = "contact model '" + inst.model + "' ";
     if (!(std::isfinite(force[0]) && std::isfinite(force[1]) && std::isfinite(force[2])))
         throw PluginError(who + "gives a non-finite force on a nominal touching contact when the inputs its `io` does not "

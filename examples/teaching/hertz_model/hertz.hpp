@@ -37,6 +37,8 @@ struct Hertz {
         "min of 0.2 x the Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smaller ball and, per ball, "
         "sqrt(m / sum k) with the tangent normal stiffness k = 2 E* sqrt(R* d)";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    // what law() reads besides normal, gap and relative velocity, and writes besides force and energies
+    static constexpr uint32_t io = PLAB_IO_RADII | PLAB_IO_MASSES | PLAB_IO_EFF_MASS | PLAB_IO_EFF_RADIUS | PLAB_IO_DT_LIMIT;
     // E, nu and fric are the ends' material: a scene material of the rule's
     // groups gives them (the pair's e is given in the rule)
     using material = ElasticSolid;

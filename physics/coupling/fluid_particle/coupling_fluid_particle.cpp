@@ -225,6 +225,7 @@ struct FluidParticle {
         "per pair: explicit drag is stable while dt < m/K; half of min(m_solid/K, m_fluid/(K share)) with K the "
         "solid's drag coefficient from the pass; 1e30 s before any drag exists";
     static constexpr uint32_t range_kind = PLAB_RANGE_DISTANCE;
+    static constexpr uint32_t io = PLAB_IO_RADII | PLAB_IO_MASSES | PLAB_IO_MOMENTS | PLAB_IO_DT_LIMIT;
     using material = FluidMaterial;
 
     enum Prop : int { smoothing_length, kernel, prop_count };

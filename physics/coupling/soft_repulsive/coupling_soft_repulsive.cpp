@@ -34,6 +34,7 @@ struct SoftRepulsive {
         "along the line of centres, active for r < min(dp, 1.5 h). Assign to fluid x structure instead of sph.";
     static constexpr const char* timestep_rule = "per pair: 0.25 h/(c + |v_rel|), the SPH CFL limit";
     static constexpr uint32_t range_kind = PLAB_RANGE_DISTANCE;
+    static constexpr uint32_t io = PLAB_IO_MASSES | PLAB_IO_DT_LIMIT;
     // c and h are the fluid's (the SPH package's material): the strength
     // scales with c^2, eta = r/(0.75 h) (eq. 22)
     using material = plab::sph::FluidMaterial;

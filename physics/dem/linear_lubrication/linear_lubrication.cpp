@@ -37,6 +37,7 @@ struct LinearLubrication {
     static constexpr const char* timestep_rule =
         "as linear (sqrt(m / sum k)); the lubrication damper c = 3 pi mu d^2/(8 s) adds dt < m_eff / c";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    static constexpr uint32_t io = PLAB_IO_RADII | PLAB_IO_EFF_MASS | PLAB_IO_DT_LIMIT;
     // a scene material of its groups gives the linear law's properties (kn, ..., rgap)
     using material = plab::linear_law::Material;
 

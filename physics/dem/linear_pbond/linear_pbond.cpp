@@ -27,6 +27,8 @@ struct LinearPBond {
     static constexpr const char* timestep_rule =
         "per ball sqrt(m / sum k) with k = max(kn + A pb_kn, ks + A pb_ks), and sqrt(I / sum (k r^2 + pb_kn I_bond))";
     static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    static constexpr uint32_t io = PLAB_IO_RADII | PLAB_IO_REL_ANGULAR_VELOCITY | PLAB_IO_EFF_MASS | PLAB_IO_MOMENTS |
+                                   PLAB_IO_STIFFNESS_ROTATIONAL | PLAB_IO_BREAK_ENERGY;
     // a scene material of its groups gives the linear law's properties (kn, ..., rgap)
     using material = plab::linear_law::Material;
 
