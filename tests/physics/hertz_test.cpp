@@ -35,7 +35,7 @@ const plab_contact_model_desc* hertz() {
     return host->model("hertz");
 }
 
-// Johnson (1985) eq. 11.24: t_c = 2.8683 (m*^2 / (R* E*^2 v))^(1/5)
+// Johnson (1985) §11.4: t_c = 2.8683 (m*^2 / (R* E*^2 v))^(1/5)
 double hertz_contact_time(double m, double R, double v) { return 2.8682657 * std::pow(m * m / (R * E_eff * E_eff * v), 0.2); }
 
 } // namespace
