@@ -155,8 +155,8 @@ TEST_CASE("a plug-in name too long for a file name is an unknown plug-in, not a 
 
 TEST_CASE("an unknown contact model lists the models available", "[scene]") {
     json s = base_scene();
-    s["contact_models"][0]["model"] = "hertz";
-    CHECK_THAT(load_error(s), Contains("scene.contact_models[0].model") && Contains("\"hertz\"") &&
+    s["contact_models"][0]["model"] = "hertz_mindlin";
+    CHECK_THAT(load_error(s), Contains("scene.contact_models[0].model") && Contains("\"hertz_mindlin\"") &&
                                   Contains("linear") && Contains("\"null\""));
     SECTION("and says how to load one when no plug-in is listed") {
         s.erase("plugins");

@@ -1,0 +1,73 @@
+// The `hertz` contact model — Hertz–Mindlin (no slip) with Tsuji damping,
+// LIGGGHTS's default and PFC's `hertz`: Hertz's normal force 4/3 E* sqrt(R*)
+// d^(3/2), Mindlin–Deresiewicz's no-slip tangential stiffness 8 G* sqrt(R* d)
+// with a Coulomb limit, dashpots from a coefficient of restitution; in 2D
+// the cylinder (line) contact pi/4 E* L d. The law is
+// plab::hertz_law::law (<plab/dem/hertz_law.hpp>); equations and sources in
+// README.md here. Ball–ball and ball–wall alike: a wall end has infinite
+// mass and radius, so the host passes m* = m_ball and R* = R_ball.
+#include <plab/dem/hertz_law.hpp>
+
+#include <algorithm>
+
+namespace {
+
+using plab::Contact;
+
+struct Hertz {
+    static constexpr const char* name = "hertz";
+    static constexpr const char* doc =
+        "Hertz-Mindlin (no-slip) contact of elastic spheres: F_n = 4/3 E* sqrt(R*) d^1.5, tangential stiffness "
+        "8 G* sqrt(R* d) on an incremental shear force capped at fric*F_n, Tsuji dashpots 2 sqrt(5/6) beta "
+        "sqrt(S m*) from the restitution e; 2D: the cylinder contact pi/4 E* L d (L = 1 m). E, nu, fric from the "
+        "groups' material dem_elastic. physics/dem/hertz/README.md.";
+    static constexpr const char* timestep_rule =
+        "min of 0.2 x the Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smaller ball and, per ball, "
+        "sqrt(m / sum k) with k = max(S_n, S_t) the tangent normal (2 E* sqrt(R* d)) and tangential stiffness";
+    static constexpr uint32_t range_kind = PLAB_RANGE_GAP;
+    // reads radii and masses (the Rayleigh time of the smaller ball), the
+    // effective mass and radius; writes a step limit besides force, energies
+    // and translational stiffness
+    static constexpr uint32_t io =
+        PLAB_IO_RADII | PLAB_IO_MASSES | PLAB_IO_EFF_MASS | PLAB_IO_EFF_RADIUS | PLAB_IO_DT_LIMIT;
+    // a scene material of its groups gives E, nu and fric; the rule gives e and dp_mode
+    using material = plab::hertz_law::Material;
+
+    enum Prop : int { youngs_modulus, poisson_ratio, restitution, fric, dp_mode, prop_count };
+    static constexpr plab_property_desc properties[] = {
+        plab::hertz_law::youngs_modulus, plab::hertz_law::poisson_ratio, plab::hertz_law::restitution,
+        plab::hertz_law::fric,           plab::hertz_law::dp_mode,
+    };
+    static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
+
+    enum Slot : int { shear_force_x, shear_force_y, shear_force_z, slot_count };
+    static constexpr plab_history_desc history[] = {
+        plab::hertz_law::shear_force_x,
+        plab::hertz_law::shear_force_y,
+        plab::hertz_law::shear_force_z,
+    };
+
+    // only touching balls interact (Hertz: no force at a gap)
+    static double activity_range(const double*) { return 0.0; }
+
+    explicit Hertz(const double* p)
+        : law_{p[youngs_modulus], p[poisson_ratio], p[restitution], p[fric], int(p[dp_mode])} {}
+
+    void law(const Contact& c) const {
+        const plab::hertz_law::Result r = plab::hertz_law::apply(law_, c, shear_force_x);
+        c.set_force(r.force);
+        c.set_strain_energy(r.strain);
+        c.set_stiffness(std::max(r.normal_stiffness, r.tangential_stiffness));  // for the stable step
+        c.set_dt_limit(kRayleighFraction * plab::hertz_law::rayleigh_time(law_, c));
+    }
+
+private:
+    // the fraction of the Rayleigh time DEM takes as its step (0.1-0.3 in
+    // the literature; EDEM's guidance 0.2, Li, Xu & Thornton 2005 0.2-0.4)
+    static constexpr double kRayleighFraction = 0.2;
+    plab::hertz_law::Params law_;
+};
+
+} // namespace
+
+PLAB_PLUGIN(plab::add_contact_model<Hertz>(r))
