@@ -20,6 +20,7 @@ const std::map<std::string, MeasurementInfo>& measurements() {
         register_coupling_measurements(m);
         register_bonded_measurements(m);
         register_structure_measurements(m);
+        register_granular_measurements(m);
         return m;
     }();
     return all;

@@ -40,5 +40,6 @@ void register_sph_measurements(std::map<std::string, MeasurementInfo>& into);
 void register_coupling_measurements(std::map<std::string, MeasurementInfo>& into);
 void register_bonded_measurements(std::map<std::string, MeasurementInfo>& into);
 void register_structure_measurements(std::map<std::string, MeasurementInfo>& into);
+void register_granular_measurements(std::map<std::string, MeasurementInfo>& into);
 
 } // namespace plab
