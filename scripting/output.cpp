@@ -10,6 +10,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -235,6 +236,12 @@ void apply_override(json& scene, const std::string& assignment) {
     std::string key;
     std::vector<std::string> keys;
     while (std::getline(ss, key, '.')) keys.push_back(key);
+    if (path.find_first_of("[]") != std::string::npos) {  // a JSONPath habit: a[0] would be made a key "a[0]"
+        std::string dotted;
+        for (char ch : path) dotted += ch == '[' ? '.' : ch == ']' ? '\0' : ch;
+        dotted.erase(std::remove(dotted.begin(), dotted.end(), '\0'), dotted.end());
+        throw InputError("--set " + assignment, "PATH takes array indices as dot-separated numbers: " + dotted + "=" + text);
+    }
     for (std::size_t i = 0; i < keys.size(); ++i) {
         const bool last = i + 1 == keys.size();
         const std::string& k = keys[i];

@@ -413,6 +413,11 @@ TEST_CASE("a --set override with a bad array index names the index and the valid
         CHECK_THAT(override_error(base_scene(), "bodies..radius=0.02"),
                    Contains("index \"\"") && Contains("[0, 2)"));
     }
+    SECTION("a bracketed index is not made a key: the message gives the dotted path") {
+        CHECK_THAT(override_error(base_scene(), "contact_models[0].properties.kn=1e6"),
+                   Contains("--set contact_models[0].properties.kn=1e6") &&
+                       Contains("contact_models.0.properties.kn=1e6"));
+    }
 }
 
 TEST_CASE("dimension 4 names its path, value and range", "[scene]") {
