@@ -1,8 +1,13 @@
 #include "generators.hpp"
 
+#include "size_distribution.hpp"
+
 #include <plab_host/plugins.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace plab {
@@ -39,10 +44,14 @@ void check_mass(const Node& n, int dim, double radius, double density) {
     n.at(n.has("mass") ? "mass" : radius_at_fault ? "radius" : "density").fail(s.str());
 }
 
-Material read_material(const Node& n, World& w, bool radius_range, bool allow_mass = false) {
+Material read_material(const Node& n, World& w, bool radius_range, bool allow_mass = false,
+                       const SizeDistribution* sizes = nullptr) {
     Material m;
     const Node r = n.at("radius");
-    if (radius_range && r.value().is_array()) {
+    if (sizes) {
+        m.radius_lo = sizes->min();
+        m.radius_hi = sizes->max();
+    } else if (radius_range && r.value().is_array()) {
         if (r.size() != 2) r.fail("expected a radius or a range [min, max], got " + show(r.value()));
         m.radius_lo = r.at(0).positive();
         m.radius_hi = r.at(1).positive();
@@ -288,56 +297,123 @@ void check_fill_possible(const Node& count_node, long count, double radius, cons
     count_node.fail(s.str());
 }
 
+// The background grid of a random fill: cells at least a diameter wide
+// (a ball's neighbours are then within one cell), and not more cells than
+// balls (tiny balls in a big box need no fine grid).
+class FillGrid {
+public:
+    FillGrid(const Box& box, int dim, double largest_radius, long count) : box_(box), dim_(dim) {
+        double volume = 1;
+        for (int c = 0; c < dim; ++c) volume *= box.hi[c] - box.lo[c];
+        cell_ = std::max(2 * largest_radius, std::pow(volume / double(count), 1.0 / dim));
+        for (int c = 0; c < dim; ++c) dims_[c] = std::max(1L, long((box.hi[c] - box.lo[c]) / cell_) + 1);
+        grid_.resize(std::size_t(dims_[0] * dims_[1] * dims_[2]));
+    }
+    // A position for a ball of radius r inside the box, from rng; false when the box is too thin for it.
+    bool draw_position(Rng& rng, double r, Vec& p) const {
+        p = Vec::Zero();
+        bool fits = true;
+        for (int c = 0; c < dim_; ++c) {
+            if (box_.hi[c] - box_.lo[c] < 2 * r) fits = false;
+            p[c] = rng.uniform(box_.lo[c] + r, box_.hi[c] - r);
+        }
+        return fits;
+    }
+    // Places the ball when it overlaps none placed before.
+    bool place(const Vec& p, double r) {
+        const long cx = cell_of(p, 0), cy = cell_of(p, 1), cz = dim_ == 3 ? cell_of(p, 2) : 0;
+        for (long z = std::max(0L, cz - 1); z <= std::min(dims_[2] - 1, cz + 1); ++z)
+            for (long y = std::max(0L, cy - 1); y <= std::min(dims_[1] - 1, cy + 1); ++y)
+                for (long x = std::max(0L, cx - 1); x <= std::min(dims_[0] - 1, cx + 1); ++x)
+                    for (int q : grid_[std::size_t((z * dims_[1] + y) * dims_[0] + x)])
+                        if ((placed[std::size_t(q)] - p).norm() < radii[std::size_t(q)] + r) return false;
+        grid_[std::size_t((cz * dims_[1] + cy) * dims_[0] + cx)].push_back(int(placed.size()));
+        placed.push_back(p);
+        radii.push_back(r);
+        return true;
+    }
+    std::vector<Vec> placed;
+    std::vector<double> radii;
+
+private:
+    long cell_of(const Vec& p, int c) const { return std::clamp(long((p[c] - box_.lo[c]) / cell_), 0L, dims_[c] - 1); }
+    Box box_;
+    int dim_;
+    double cell_ = 0;
+    std::array<long, 3> dims_{1, 1, 1};
+    std::vector<std::vector<int>> grid_;
+};
+
+// A radius range [min, max]: each attempt draws its own radius, uniform in
+// the range (so a dense fill keeps more small balls than the range holds).
+long fill_drawing_per_attempt(FillGrid& grid, Rng& rng, const Material& m, long count, long max_attempts) {
+    long attempts = 0;
+    while (long(grid.placed.size()) < count && attempts < max_attempts) {
+        ++attempts;
+        const double r = rng.uniform(m.radius_lo, m.radius_hi);
+        Vec p;
+        if (grid.draw_position(rng, r, p)) grid.place(p, r);
+    }
+    return attempts;
+}
+
+// A size distribution: the count radii drawn first and placed largest
+// first, so the fill holds exactly the radii drawn.
+long fill_drawn_radii(FillGrid& grid, Rng& rng, const std::vector<double>& radii, long max_attempts) {
+    long attempts = 0;
+    for (double r : radii) {
+        Vec p;
+        bool placed = false;
+        while (!placed && attempts < max_attempts) {
+            ++attempts;
+            placed = grid.draw_position(rng, r, p) && grid.place(p, r);
+        }
+        if (!placed) break;
+    }
+    return attempts;
+}
+
+// The drawn balls' total volume must fit the box (a necessary condition).
+void check_drawn_fit(const Node& n, const std::vector<double>& radii, const Box& box, int dim) {
+    double balls = 0, volume = 1;
+    for (double r : radii) balls += dim == 2 ? M_PI * r * r : 4.0 / 3.0 * M_PI * r * r * r;
+    for (int c = 0; c < dim; ++c) volume *= box.hi[c] - box.lo[c];
+    if (balls > volume) {
+        std::ostringstream s;
+        s << "value " << radii.size() << " cannot fit: the radii drawn occupy " << balls << ", more than the box's "
+          << volume;
+        n.fail(s.str());
+    }
+}
+
 // Random non-overlapping fill by rejection on a background grid.
-Box random_fill(const Node& n, World& w, const GeneratorLimits& limits) {
+Box random_fill(const Node& n, World& w, const GeneratorLimits& limits, const std::string& scene_dir) {
     n.allow_keys({"type", "group", "box", "radius", "density", "count", "seed", "fix", "local_damping", "viscous_damping", "max_attempts"});
-    const Material m = read_material(n, w, true);
+    std::optional<SizeDistribution> sizes;
+    if (n.at("radius").value().is_object()) sizes.emplace(n.at("radius"), w.dim, scene_dir);
+    const Material m = read_material(n, w, true, false, sizes ? &*sizes : nullptr);
     const Box box = read_box(n.at("box"), w.dim);
     const long count = n.at("count").integer(1, 100000000);
     check_body_budget(n.at("count"), double(count), w, limits);
     check_fill_possible(n.at("count"), count, m.radius_lo, box, w.dim);
     Rng rng(std::uint64_t(n.has("seed") ? n.at("seed").integer(0, 1L << 40) : 1));
     const long max_attempts = n.has("max_attempts") ? n.at("max_attempts").integer(1, 1L << 40) : 1000 * count;
-    std::vector<Vec> placed;
-    std::vector<double> radii;
-    // cells at least a diameter (neighbours are then within one cell) and
-    // not more cells than balls: tiny balls in a big box need no fine grid
-    double box_volume = 1;
-    for (int c = 0; c < w.dim; ++c) box_volume *= box.hi[c] - box.lo[c];
-    const double cell = std::max(2 * m.radius_hi, std::pow(box_volume / double(count), 1.0 / w.dim));
-    std::array<long, 3> dims{1, 1, 1};
-    for (int c = 0; c < w.dim; ++c) dims[c] = std::max(1L, long((box.hi[c] - box.lo[c]) / cell) + 1);
-    std::vector<std::vector<int>> grid(std::size_t(dims[0] * dims[1] * dims[2]));
-    auto cell_of = [&](const Vec& p, int c) { return std::clamp(long((p[c] - box.lo[c]) / cell), 0L, dims[c] - 1); };
+    FillGrid grid(box, w.dim, m.radius_hi, count);
     long attempts = 0;
-    while (long(placed.size()) < count && attempts < max_attempts) {
-        ++attempts;
-        const double r = rng.uniform(m.radius_lo, m.radius_hi);
-        Vec p = Vec::Zero();
-        bool fits = true;
-        for (int c = 0; c < w.dim; ++c) {
-            if (box.hi[c] - box.lo[c] < 2 * r) fits = false;
-            p[c] = rng.uniform(box.lo[c] + r, box.hi[c] - r);
-        }
-        if (!fits) continue;
-        const long cx = cell_of(p, 0), cy = cell_of(p, 1), cz = w.dim == 3 ? cell_of(p, 2) : 0;
-        for (long z = std::max(0L, cz - 1); fits && z <= std::min(dims[2] - 1, cz + 1); ++z)
-            for (long y = std::max(0L, cy - 1); fits && y <= std::min(dims[1] - 1, cy + 1); ++y)
-                for (long x = std::max(0L, cx - 1); fits && x <= std::min(dims[0] - 1, cx + 1); ++x)
-                    for (int q : grid[(z * dims[1] + y) * dims[0] + x])
-                        if ((placed[q] - p).norm() < radii[q] + r) { fits = false; break; }
-        if (!fits) continue;
-        grid[(cz * dims[1] + cy) * dims[0] + cx].push_back(int(placed.size()));
-        placed.push_back(p);
-        radii.push_back(r);
+    if (sizes) {
+        const std::vector<double> radii = sizes->draw(count, rng);
+        check_drawn_fit(n.at("count"), radii, box, w.dim);
+        attempts = fill_drawn_radii(grid, rng, radii, max_attempts);
+    } else {
+        attempts = fill_drawing_per_attempt(grid, rng, m, count, max_attempts);
     }
-    if (long(placed.size()) < count) {
+    if (long(grid.placed.size()) < count) {
         std::ostringstream s;
-        s << "could place only " << placed.size() << " of " << count << " non-overlapping balls in " << attempts
+        s << "could place only " << grid.placed.size() << " of " << count << " non-overlapping balls in " << attempts
           << " attempts; enlarge the box, lower the count or the radius";
         n.at("count").fail(s.str());
     }
-    for (std::size_t i = 0; i < placed.size(); ++i) add(w, m, placed[i], radii[i]);
+    for (std::size_t i = 0; i < grid.placed.size(); ++i) add(w, m, grid.placed[i], grid.radii[i]);
     return box;
 }
 
@@ -361,14 +437,15 @@ std::uint8_t read_fixity(const Node& n) {
     return f;
 }
 
-std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits, LatticeCells* cells) {
+std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits, LatticeCells* cells,
+                                   const std::string& scene_dir) {
     const std::string type = n.at("type").choice({"ball", "lattice", "random_fill"});
     if (type == "ball") {
         single_ball(n, w);
         return std::nullopt;
     }
     w.mark_dirty();
-    return type == "lattice" ? lattice(n, w, limits, cells) : random_fill(n, w, limits);
+    return type == "lattice" ? lattice(n, w, limits, cells) : random_fill(n, w, limits, scene_dir);
 }
 
 namespace {

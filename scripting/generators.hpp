@@ -60,7 +60,9 @@ struct LatticeCells {
 // Adds the balls of one `bodies[i]` entry; returns the region it filled
 // (lattice and random fill) so overlapping regions can be refused; a
 // lattice also describes its cells in `cells`.
-std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits = {}, LatticeCells* cells = nullptr);
+// (`scene_dir`: where the files a generator reads, a sieve curve, are looked for)
+std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits = {}, LatticeCells* cells = nullptr,
+                                   const std::string& scene_dir = ".");
 void generate_wall(const Node& n, World& w);
 // Refuses two facets in the same place (the walls at `walls`, by index).
 void check_coincident_facets(const Node& walls, const World& w);

@@ -129,7 +129,7 @@ void Simulation::load_bodies(const Node& n) {
         const Node g = n.at(i);
         const std::size_t before = world_->bodies.size();
         LatticeCells cells;
-        const std::optional<Box> region = generate_bodies(g, *world_, limits_, &cells);
+        const std::optional<Box> region = generate_bodies(g, *world_, limits_, &cells, scene_dir_);
         if (cells.group >= 0) {
             cells.first = before;
             cells.end = world_->bodies.size();
