@@ -495,6 +495,7 @@ void Simulation::cycle(long n) {
     } unset{w};
     w.contact_forces_wanted = [&] { return k + 1 >= n || stop_signal() != 0 || due_after_step().any(); };
     const auto one_step = [&] {
+        if (!servos_.empty()) drive_servos(servos_, w);
         w.step();
         ++run_.steps;
         after_step();

@@ -6,6 +6,7 @@
 #include "json_reader.hpp"
 #include "pictures.hpp"
 #include "progress.hpp"
+#include "servo.hpp"
 #include "vtk_output.hpp"
 
 #include <plab_host/world.hpp>
@@ -226,6 +227,7 @@ private:
     void check_domain(const std::string& where, std::size_t first) const;
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
     GeneratorLimits limits_;
+    std::vector<Servo> servos_;  // scene.servos: walls driven to a target stress before each step
     std::vector<LatticeCells> lattices_;  // the scene's lattices, for calibrate.density
     json structures_ = json::array();     // what the lattices and calibrations did (summary.json "structures")
     void calibrate_density(const Node& cal, const std::vector<int>* sides);
