@@ -51,7 +51,7 @@ TEST_CASE("free rotation keeps angular momentum and energy, and flips at the ell
     CHECK(measured == Approx(T).epsilon(0.01));
 }
 
-TEST_CASE("a spin about the major axis stays about it; a torque kick adds M dt to the angular momentum", "[rigid][rotation]") {
+TEST_CASE("a spin about the major axis stays about it, and a torque kick adds M dt to the angular momentum", "[rigid][rotation]") {
     const Vec I(1.0, 2.0, 3.0);
     RigidRotation r;
     r.angular_momentum = r.orientation * I.cwiseProduct(Vec(0.01, 0.01, 1.0));

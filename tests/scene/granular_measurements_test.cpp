@@ -40,7 +40,7 @@ double angle_of(const json& scene) {
 
 } // namespace
 
-TEST_CASE("heap_angle is the angle of the flank's surface line, the balls outside [y_min, y_max] left out", "[measurements]") {
+TEST_CASE("heap_angle is the angle of the flank's surface line, the balls below y_min or above y_max left out", "[measurements]") {
     for (double degrees : {10.0, 30.0, 45.0}) {
         INFO(degrees << " degrees");
         const double slope = std::tan(degrees * M_PI / 180);
