@@ -30,6 +30,11 @@ struct Source {
     }
 };
 
+// "1 triangle", "2 triangles"
+std::string count_of(std::uint64_t n, const std::string& noun) {
+    return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
 std::string lower(std::string s) {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
     return s;
@@ -192,7 +197,7 @@ void read_ascii_stl(const std::string& d, const Source& src, MeshFile& mesh) {
     }
     if (state != outside)
         src.fail("(ASCII STL)", "the file ends inside " + std::string(state == in_solid ? "a solid, without \"endsolid\"" : "a facet") +
-                                    " after " + std::to_string(facets) + " facets (line " +
+                                    " after " + count_of(facets, "facet") + " (line " +
                                     std::to_string(lines.empty() ? 0 : lines.back().number) + "): truncated?");
 }
 
@@ -214,10 +219,10 @@ void read_stl(const std::string& d, const Source& src, MeshFile& mesh) {
         src.fail("", "has " + std::to_string(d.size()) + " bytes: too short for a binary STL (an 84-byte header) and "
                      "not an ASCII STL (which starts with \"solid\")");
     if (d.size() < expected)
-        src.fail("(binary STL)", "truncated: its header counts " + std::to_string(n) + " triangles (84 + 50 x " + std::to_string(n) +
+        src.fail("(binary STL)", "truncated: its header counts " + count_of(n, "triangle") + " (84 + 50 x " + std::to_string(n) +
                                      " = " + std::to_string(expected) + " bytes), the file has " + std::to_string(d.size()) +
                                      " bytes; triangle " + std::to_string((d.size() - 84) / 50 + 1) + " is incomplete");
-    src.fail("(binary STL)", "its header counts " + std::to_string(n) + " triangles (84 + 50 x " + std::to_string(n) + " = " +
+    src.fail("(binary STL)", "its header counts " + count_of(n, "triangle") + " (84 + 50 x " + std::to_string(n) + " = " +
                                  std::to_string(expected) + " bytes), but the file has " + std::to_string(d.size()) +
                                  " bytes: a wrong count, or not an STL file");
 }
