@@ -88,8 +88,8 @@ TEST_CASE("a truncated binary STL is refused naming the triangle cut short, a ba
     std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("non-finite vertices and cut ASCII files are refused by line or triangle; zero-area triangles are left out "
-          "and counted; a file without a triangle is refused", "[mesh][scene]") {
+TEST_CASE("non-finite vertices and cut ASCII files are refused by line or triangle, zero-area triangles are left out "
+          "and counted, and a file without a triangle is refused", "[mesh][scene]") {
     const auto dir = mesh_dir("bad");
     std::vector<Triangle> t = cube_triangles();
     t[3][1].y() = std::nan("");
@@ -116,6 +116,12 @@ TEST_CASE("non-finite vertices and cut ASCII files are refused by line or triang
     CHECK(m.degenerate == 2);
     CHECK(m.degenerate_where == "triangle 3 of 14, triangle 14 of 14");
     CHECK(m.triangles[2][1] == cube_triangles()[2][1]);
+
+    // a statement that is not v, f or one of the known non-shape ones is named, for the warning
+    write_file(dir / "curve.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng part\ncstype bspline\ncurv 0 1 1 2\nf 1 2 3\n");
+    const MeshFile curve = read(dir / "curve.obj");
+    CHECK(curve.triangles.size() == 1);
+    CHECK(curve.ignored == "\"cstype\" (line 5)");
 
     write_file(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
     CHECK_THROWS_WITH(read(dir / "flat.obj"), Contains("holds no triangle of non-zero area (1 zero-area ones left out)"));
