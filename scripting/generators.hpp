@@ -63,7 +63,8 @@ struct LatticeCells {
 // (`scene_dir`: where the files a generator reads, a sieve curve, are looked for)
 std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits = {}, LatticeCells* cells = nullptr,
                                    const std::string& scene_dir = ".");
-void generate_wall(const Node& n, World& w);
+// A wall; a mesh wall's relative "file" is found in `scene_dir`.
+void generate_wall(const Node& n, World& w, const std::string& scene_dir = ".");
 // Refuses two facets in the same place (the walls at `walls`, by index).
 void check_coincident_facets(const Node& walls, const World& w);
 

@@ -159,7 +159,7 @@ void Simulation::load_bodies(const Node& n) {
 
 void Simulation::load_walls(const Node& n) {
     n.expect_array();
-    for (std::size_t i = 0; i < n.size(); ++i) generate_wall(n.at(i), *world_);
+    for (std::size_t i = 0; i < n.size(); ++i) generate_wall(n.at(i), *world_, scene_dir_);
     check_coincident_facets(n, *world_);
 }
 

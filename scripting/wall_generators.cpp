@@ -1,10 +1,15 @@
 // Walls from a scene: segment / polyline / box (2D and 3D), plane,
-// rectangle and triangle meshes (3D). Each wall moves rigidly.
+// rectangle, triangle lists and mesh files (3D). Each wall moves rigidly.
 #include "generators.hpp"
+#include "mesh_reader.hpp"
+
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
+#include <sstream>
 
 namespace plab {
 
@@ -66,11 +71,77 @@ void box(const Node& n, World& w, int wall) {
     if (!is_open("top")) add_rectangle(w, wall, corner(0, 0, 1), corner(1, 0, 1), corner(1, 1, 1), corner(0, 1, 1));
 }
 
+// A mesh's placement in the scene: x' = R (S x) + t, the file's
+// coordinates scaled per axis (e.g. 0.001 for a CAD file in mm), rotated
+// about the origin (e.g. an OBJ's y-up to the scene's z-up), then moved.
+struct Placement {
+    Vec scale = Vec::Ones(), translate = Vec::Zero();
+    Eigen::Matrix3d rotate = Eigen::Matrix3d::Identity();
+    Vec operator()(const Vec& x) const { return rotate * scale.cwiseProduct(x) + translate; }
+};
+
+Placement mesh_placement(const Node& n) {
+    Placement p;
+    if (n.has("scale")) {
+        const Node s = n.at("scale");
+        if (s.value().is_number()) p.scale = Vec::Constant(s.positive());
+        else if (s.value().is_array() && s.size() == 3) for (int c = 0; c < 3; ++c) p.scale[c] = s.at(std::size_t(c)).positive();
+        else s.fail("expected a number or 3 numbers (per axis), each > 0, got " + show(s.value()));
+    }
+    p.translate = n.vec_or("translate", 3, Vec::Zero());
+    if (n.has("rotate")) {
+        const Node r = n.at("rotate");
+        r.allow_keys({"axis", "angle"});
+        const Vec axis = r.at("axis").vec(3);
+        if (axis.norm() == 0) r.at("axis").fail("the rotation axis must not be zero");
+        const double degrees = r.at("angle").number(-360, 360);
+        p.rotate = Eigen::AngleAxisd(degrees * M_PI / 180, axis.normalized()).toRotationMatrix();
+    }
+    return p;
+}
+
+std::string text(const Vec& v) {
+    std::ostringstream s;
+    s << "[" << short_number(v.x()) << ", " << short_number(v.y()) << ", " << short_number(v.z()) << "]";
+    return s.str();
+}
+
+// A mesh file's triangles, each a triangle facet of the one wall (so the
+// wall's force and moment sum over them, and a ball on a shared edge is
+// pushed once: resolve_wall_features works within a wall).
+void mesh(const Node& n, World& w, int wall, const std::string& scene_dir) {
+    if (w.dim != 3)
+        n.at("type").fail("wall type \"mesh\" needs a 3D scene (a 2D scene's walls are segments: use \"polyline\")");
+    const std::string file = n.at("file").string();
+    const std::filesystem::path given(file);
+    const std::string path = given.is_absolute() ? file : (std::filesystem::path(scene_dir) / given).string();
+    const MeshFile m = read_mesh(path, file, n.at("file").path());
+    const Placement place = mesh_placement(n);
+    Vec lo = Vec::Constant(kInf), hi = Vec::Constant(-kInf);
+    for (const Triangle& t : m.triangles) {
+        const Vec a = place(t[0]), b = place(t[1]), c = place(t[2]);
+        for (const Vec& p : {a, b, c}) {
+            if (!p.allFinite())
+                n.at(n.has("scale") ? "scale" : "translate").fail("the placed mesh has a vertex beyond the range of doubles");
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
+        }
+        add_triangle(w, wall, a, b, c);
+    }
+    if (m.degenerate)
+        spdlog::warn("{}: \"{}\": left out {} zero-area triangle{} ({}): no face a ball could touch", n.at("file").path(), file,
+                     m.degenerate, m.degenerate > 1 ? "s" : "", m.degenerate_where);
+    if (!m.ignored.empty())
+        spdlog::warn("{}: \"{}\": OBJ statements other than v and f left out, the first {}", n.at("file").path(), file, m.ignored);
+    spdlog::info("{}: {} triangles from \"{}\" ({}), in the scene from {} to {} m", n.path(), m.triangles.size(), file,
+                 m.format, text(lo), text(hi));
+}
+
 } // namespace
 
-void generate_wall(const Node& n, World& w) {
+void generate_wall(const Node& n, World& w, const std::string& scene_dir) {
     const std::string type =
-        n.at("type").choice({"segment", "polyline", "box", "plane", "rectangle", "triangles"});
+        n.at("type").choice({"segment", "polyline", "box", "plane", "rectangle", "triangles", "mesh"});
     std::vector<const char*> keys = {"type", "name", "group", "velocity", "angular_velocity", "centre"};
     if (type == "segment") keys.insert(keys.end(), {"from", "to"});
     if (type == "polyline") keys.insert(keys.end(), {"points", "closed"});
@@ -78,6 +149,7 @@ void generate_wall(const Node& n, World& w) {
     if (type == "plane") keys.insert(keys.end(), {"point", "normal"});
     if (type == "rectangle") keys.insert(keys.end(), {"corners"});
     if (type == "triangles") keys.insert(keys.end(), {"vertices", "triangles"});
+    if (type == "mesh") keys.insert(keys.end(), {"file", "scale", "translate", "rotate"});
     // allow_keys takes an initializer list; check by hand for this variable set
     n.expect_object();
     for (auto it = n.value().begin(); it != n.value().end(); ++it) {
@@ -122,6 +194,8 @@ void generate_wall(const Node& n, World& w) {
         if (normal.norm() == 0) n.at("normal").fail("normal must not be zero");
         f.b = normal.normalized();
         w.walls.add_facet(id, f);
+    } else if (type == "mesh") {
+        mesh(n, w, id, scene_dir);
     } else if (type == "rectangle") {
         require_dim(n, w, 3, type);
         const Node c = n.at("corners");
