@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 namespace plab {
 
@@ -22,9 +23,23 @@ public:
         parser_.DefineFun("floor", floor_of);
         parser_.DefineConst("pi", M_PI);
     }
-    void set(const std::string& name, double value) {
+    // false with muParser's reason in `why` for a name it cannot take (a
+    // function's or a constant's name)
+    bool set(const std::string& name, double value, std::string& why) {
         auto [it, added] = values_.insert_or_assign(name, value);
-        if (added) parser_.DefineVar(name, &it->second);
+        if (!added) return true;
+        try {
+            parser_.DefineVar(name, &it->second);
+        } catch (const mu::Parser::exception_type& e) {
+            values_.erase(it);
+            why = e.GetMsg();
+            return false;
+        }
+        return true;
+    }
+    void set(const std::string& name, double value) {
+        std::string why;
+        if (!set(name, value, why)) throw std::logic_error("variable \"" + name + "\": " + why);
     }
     // A variable that is a name (a choice, a group) or true/false: it stands
     // only alone, "$(name)", and is replaced by its JSON value.
@@ -37,6 +52,7 @@ public:
         return it == words_.end() ? nullptr : &it->second;
     }
     bool is_word(const std::string& name) const { return words_.count(name) > 0; }
+    static bool is_reserved(const std::string& name) { return name == "pi" || name == "ceil" || name == "floor"; }
     // The value, or the parser's reason in `why`.
     bool evaluate(const std::string& expression, double& out, std::string& why) {
         try {
@@ -81,8 +97,14 @@ void evaluate_variables(json& vars, Evaluator& eval) {
     const Node n(vars, "scene.variables");
     n.expect_object();
     std::map<std::string, std::string> pending;
+    const auto define = [&](const std::string& name, double value) {
+        std::string why;
+        if (!eval.set(name, value, why)) n.at(name).fail("cannot be a variable's name: " + why);
+    };
     for (auto& [name, v] : vars.items()) {
-        if (v.is_number()) eval.set(name, v.get<double>());
+        if (!is_identifier(name) || eval.is_reserved(name))
+            n.at(name).fail("a variable's name is a letter or '_' and then letters, digits or '_', and not pi, ceil or floor");
+        if (v.is_number()) define(name, v.get<double>());
         else if (v.is_boolean()) eval.set_word(name, v);
         // a single word that names no other variable (nor pi) is a name, e.g.
         // a choice: "pressure_mode": "extrapolated_gravity"
@@ -99,7 +121,7 @@ void evaluate_variables(json& vars, Evaluator& eval) {
             double value = 0;
             std::string why;
             if (eval.evaluate(it->second, value, why)) {
-                eval.set(it->first, value);
+                define(it->first, value);
                 vars[it->first] = value;
                 it = pending.erase(it);
             } else {
