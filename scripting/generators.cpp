@@ -1,5 +1,7 @@
 #include "generators.hpp"
 
+#include "clump_generator.hpp"
+
 #include "size_distribution.hpp"
 
 #include <plab_host/plugins.hpp>
@@ -439,9 +441,17 @@ std::uint8_t read_fixity(const Node& n) {
 
 std::optional<Box> generate_bodies(const Node& n, World& w, const GeneratorLimits& limits, LatticeCells* cells,
                                    const std::string& scene_dir) {
-    const std::string type = n.at("type").choice({"ball", "lattice", "random_fill"});
+    const std::string type = n.at("type").choice({"ball", "lattice", "random_fill", "clump", "rigid", "clump_fill"});
     if (type == "ball") {
         single_ball(n, w);
+        return std::nullopt;
+    }
+    if (type == "clump" || type == "rigid") {
+        generate_clump(n, w, scene_dir);
+        return std::nullopt;
+    }
+    if (type == "clump_fill") {
+        generate_clump_fill(n, w, scene_dir);
         return std::nullopt;
     }
     w.mark_dirty();

@@ -5,6 +5,8 @@
 // about the major axis stable, and a torque's kick.
 #include "integration/rigid_rotation.hpp"
 
+#include "euler_top.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -12,18 +14,6 @@
 
 using namespace plab;
 
-namespace {
-
-// The period of ω for I1 < I2 < I3 (L-L §37): T = 4 K(k) / p, with the roles
-// of axes 1 and 3 exchanged when L^2 < 2 E I2.
-double flip_period(Vec I, double energy, double l2) {
-    if (l2 < 2 * energy * I.y()) std::swap(I.x(), I.z());
-    const double p = std::sqrt((I.z() - I.y()) * (l2 - 2 * energy * I.x()) / (I.x() * I.y() * I.z()));
-    const double k2 = (I.y() - I.x()) * (2 * energy * I.z() - l2) / ((I.z() - I.y()) * (l2 - 2 * energy * I.x()));
-    return 4 * std::comp_ellint_1(std::sqrt(k2)) / p;
-}
-
-} // namespace
 
 TEST_CASE("free rotation keeps angular momentum and energy, and flips at the elliptic period", "[rigid][rotation]") {
     const Vec I(1.0, 2.0, 3.0);

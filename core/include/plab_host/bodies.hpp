@@ -42,6 +42,9 @@ struct Bodies {
     std::vector<double> viscous_damping;  // 1/s: F = -c m v, M = -c I w (mass-proportional)
     std::vector<int> group;
     std::vector<std::uint8_t> fixity;
+    // the clump whose pebble the ball is (-1: a free ball); empty while the
+    // world has no clump (plab_host/clumps.hpp)
+    std::vector<std::int32_t> clump;
     BodyId next_id = 0;
 
     std::size_t size() const { return id.size(); }

@@ -23,5 +23,8 @@ constexpr std::size_t kParallelMin = 1024;
 
 // Degrees of freedom that can be fixed, as bits.
 enum Dof : std::uint8_t { dof_x = 1, dof_y = 2, dof_z = 4, dof_rx = 8, dof_ry = 16, dof_rz = 32, dof_all = 63 };
+// Not a DOF: the ball is a pebble of a clump (plab_host/clumps.hpp), moved by
+// its clump; the leapfrog neither kicks it nor counts its energy.
+constexpr std::uint8_t dof_clumped = 64;
 
 } // namespace plab

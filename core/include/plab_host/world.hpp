@@ -8,6 +8,7 @@
 #pragma once
 
 #include <plab_host/bodies.hpp>
+#include <plab_host/clumps.hpp>
 #include <plab_host/contacts.hpp>
 #include <plab_host/energies.hpp>
 #include <plab_host/fields.hpp>
@@ -53,6 +54,7 @@ public:
 
     const int dim;
     Bodies bodies;
+    Clumps clumps;  // rigid bodies; their pebbles are balls of `bodies`
     Walls walls;
     BodyFields fields;  // per-body fields registered by plug-ins
     Vec gravity = Vec::Zero();
@@ -78,6 +80,8 @@ public:
     // Registers a field at every body (BodyFields::add).
     int register_field(const std::string& name, double default_value, const char* unit = nullptr);
     void add_pass(const std::string& name, std::vector<double> props);
+    // Adds a clump and its pebbles (Clumps::add); returns its index.
+    std::size_t add_clump(const ClumpSpec& spec);
     void set_skin(double skin);  // m; < 0: a quarter of the mean radius
 
     // ---- time stepping ----

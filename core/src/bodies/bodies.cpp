@@ -24,6 +24,7 @@ void Bodies::trim() {
     id.shrink_to_fit();
     group.shrink_to_fit();
     fixity.shrink_to_fit();
+    clump.shrink_to_fit();
 }
 
 BodyId Bodies::add(const BallSpec& s) {
@@ -48,6 +49,7 @@ BodyId Bodies::add(const BallSpec& s) {
     viscous_damping.push_back(s.viscous_damping);
     group.push_back(s.group);
     fixity.push_back(s.fixity | implicit_fixity());
+    if (!clump.empty()) clump.push_back(-1);
     return new_id;
 }
 

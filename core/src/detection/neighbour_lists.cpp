@@ -124,6 +124,8 @@ void NeighbourLists::find_ball_pairs(const Bodies& bodies, const AssignmentTable
         const Vec origin = lo;
         const double size = cell;
         const std::int32_t *first = start.data(), *item = items.data();
+        // the pebbles of one clump never touch (null: no clump in the world)
+        const std::int32_t* clump = bodies.clump.size() == n ? bodies.clump.data() : nullptr;
         auto cell_at = [&](const Vec& p, int c) { return std::min(d[c] - 1, long((p[c] - origin[c]) / size)); };
         for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
             const Vec& pi = bodies.position[i];
@@ -137,6 +139,7 @@ void NeighbourLists::find_ball_pairs(const Bodies& bodies, const AssignmentTable
                             if (std::size_t(j) <= i) continue;
                             const int inst = cmat[bodies.group[i] * ng + bodies.group[j]];
                             if (inst < 0) continue;
+                            if (clump && clump[i] >= 0 && clump[i] == clump[j]) continue;
                             const double cut = cutoff(*instances[inst], bodies.radius[i], bodies.radius[j], s);
                             if ((bodies.position[j] - pi).squaredNorm() <= cut * cut)
                                 lists[inst].push_back({std::int32_t(i), j});

@@ -84,6 +84,7 @@ void kick_fixed_block(Bodies& bodies, const double* inv_m, const double* inv_i, 
     const KickColumns B(bodies);
     for (std::size_t i = i0; i < i1; ++i) {
         const std::uint8_t fix = fixity[i];
+        if (fix & dof_clumped) continue;  // its clump moves it (clump_motion.hpp)
         for (int c = 0; c < 3; ++c) {
             if (!(fix & (dof_x << c))) B.velocity[i][c] += h * B.force[i][c] * inv_m[i];
             if (!(fix & (dof_rx << c))) B.angular_velocity[i][c] += h * B.moment[i][c] * inv_i[i];
@@ -253,7 +254,8 @@ void Leapfrog::body_energies(Bodies& bodies, double dt) {
     const KickColumns cols(bodies);
     for (std::size_t b = 0; b < n_blocks; ++b)
         for (std::size_t i = b * kBodyBlock; i < std::min(n, (b + 1) * kBodyBlock); ++i)
-            add_body_energy(cols, i, cols.velocity[i], cols.angular_velocity[i], dt, bodies.fixity[i] & ~implicit,
+            if (!(bodies.fixity[i] & dof_clumped))
+                add_body_energy(cols, i, cols.velocity[i], cols.angular_velocity[i], dt, bodies.fixity[i] & ~implicit,
                             block_kinetic_[b], block_boundary_[b]);
 }
 

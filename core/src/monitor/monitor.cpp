@@ -199,6 +199,8 @@ StableStep Monitor::stable_timestep() {
             if (dt < best.critical) { best.critical = dt; ball = i; rotation = true; }
         }
     }
+    const std::size_t clump = clump_timestep(k_trans, k_rot, best, rotation);
+    if (clump < in_.clumps.size()) ball = in_.bodies.size();
     const ModelInstance* limit_model = nullptr;
     const ContactSet* limit_set = nullptr;
     std::size_t limit_row = 0;
@@ -218,7 +220,11 @@ StableStep Monitor::stable_timestep() {
         for (std::size_t k = 0; k < s->size(); ++k)
             if (s->active[k]) consider(s->dt_limit[k], k);
     }
-    if (limit_model) {
+    if (clump < in_.clumps.size() && !limit_model && ball == in_.bodies.size()) {
+        best.limited_by = "group " + in_.groups.group_name(in_.clumps.group[clump]) + ": " +
+                          (rotation ? "rotation" : "translation") + " of clump id " + std::to_string(in_.clumps.id[clump]) +
+                          (rotation ? " (sqrt(I_min/sum (k_r + k d^2)) over its pebbles)" : " (sqrt(M/sum k) over its pebbles)");
+    } else if (limit_model) {
         best.limited_by = "model " + limit_model->model + " for groups " + contact_groups(*limit_set, limit_row) +
                           ": its step limit";
     } else if (ball < in_.bodies.size()) {
@@ -227,6 +233,36 @@ StableStep Monitor::stable_timestep() {
                           (rotation ? " (sqrt(I/sum k_r))" : " (sqrt(m/sum k))");
     }
     return best;
+}
+
+// A clump's critical step from its pebbles' stiffness sums: translation
+// sqrt(M / Σ k), rotation sqrt(I_min / Σ (k_r + k d²)) with d the pebble's
+// reach from the centre of mass (its centre's distance plus its radius), the
+// stiffest a contact force on the pebble can turn the clump. Lowers `best`
+// where a clump limits it; returns that clump (else the clump count).
+std::size_t Monitor::clump_timestep(const std::vector<double>& k_trans, const std::vector<double>& k_rot,
+                                    StableStep& best, bool& rotation) const {
+    const Clumps& C = in_.clumps;
+    std::size_t limit = C.size();
+    for (std::size_t c = 0; c < C.size(); ++c) {
+        double k = 0, k_turn = 0, smallest = kInf;
+        for (std::size_t p = C.first_pebble[c]; p < C.first_pebble[c + 1]; ++p) {
+            const std::size_t i = std::size_t(C.pebble_body[p]);
+            if (i >= k_trans.size()) continue;
+            const double reach = C.pebble_offset[p].norm() + in_.bodies.radius[i];
+            k += k_trans[i];
+            k_turn += k_rot[i] + k_trans[i] * reach * reach;
+        }
+        for (int d = 0; d < 3; ++d)
+            if (C.principal_moments[c][d] > 0) smallest = std::min(smallest, C.principal_moments[c][d]);
+        if (k > 0 && std::sqrt(C.mass[c] / k) < best.critical) {
+            best.critical = std::sqrt(C.mass[c] / k); limit = c; rotation = false;
+        }
+        if (k_turn > 0 && std::sqrt(smallest / k_turn) < best.critical) {
+            best.critical = std::sqrt(smallest / k_turn); limit = c; rotation = true;
+        }
+    }
+    return limit;
 }
 
 // "grains-walls": the groups of a contact's two ends.

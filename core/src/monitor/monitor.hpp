@@ -5,6 +5,7 @@
 #pragma once
 
 #include <plab_host/bodies.hpp>
+#include <plab_host/clumps.hpp>
 #include <plab_host/stability.hpp>
 #include <plab_host/walls.hpp>
 #include <plab_host/world.hpp>
@@ -25,6 +26,7 @@ namespace plab {
 struct MonitorInputs {
     const int dim;
     const Bodies& bodies;
+    const Clumps& clumps;
     const Walls& walls;
     const AssignmentTable& groups;
     const Instances& instances;
@@ -80,6 +82,8 @@ private:
     std::string contact_name(const ModelInstance& inst, const ContactSet& s, std::size_t k) const;
     std::string contact_groups(const ContactSet& s, std::size_t k) const;
     std::string stiffest_model(std::size_t ball) const;
+    std::size_t clump_timestep(const std::vector<double>& k_trans, const std::vector<double>& k_rot, StableStep& best,
+                               bool& rotation) const;
     std::string non_finite_contact(std::size_t body) const;
     std::string timestep_assessment() const;
 

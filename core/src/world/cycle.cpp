@@ -35,7 +35,7 @@ Cycle::Cycle(World& w, std::shared_ptr<PluginHost> plugins)
       forces({w.dim, w.bodies, w.walls, w.fields, assignment, instances, passes, tables.sets, tables.owner, tables.body_contacts,
               pass_contacts, w.bond_breaks, w.time, w.step_count, w.last_dt, w.parallel_min},
              reduction),
-      monitor({w.dim, w.bodies, w.walls, assignment, instances, tables.sets, tables.owner, tables.body_contacts, forces.packed, w.energies,
+      monitor({w.dim, w.bodies, w.clumps, w.walls, assignment, instances, tables.sets, tables.owner, tables.body_contacts, forces.packed, w.energies,
                w.parallel_min},
               w.step_count, w.time, w.last_dt, w.stopped) {}
 
@@ -104,6 +104,7 @@ void Cycle::prepare() {
     world.last_dt = 0;
     forces.write_contact_forces(true);  // (also after a step that failed before its forces)
     force_pass();
+    finish_clumps(0.0, 0.0);
     leapfrog_.cache_inverse_masses(world.bodies);
     leapfrog_.body_energies(world.bodies, 0.0);
     sum_energies(0.0);  // states (kinetic, strain) at this instant; no flow
@@ -137,6 +138,7 @@ void Cycle::step() {
 void Cycle::take_snapshot() {
     if (!prepared) prepare();
     last_good_.keep(world.bodies, world.walls, world.fields, world.energies, {world.time, world.last_dt, world.step_count}, world.bond_breaks.size(), instances);
+    kept_clumps_ = world.clumps;
     monitor.keep_snapshot_step();
     if (world.on_snapshot) world.on_snapshot();
 }
@@ -149,6 +151,7 @@ void Cycle::restore_snapshot() {
     Clock clock;
     std::size_t breaks = 0;
     last_good_.restore(world.bodies, world.walls, world.fields, world.energies, clock, breaks, instances);
+    world.clumps = kept_clumps_;
     world.time = clock.time;
     world.last_dt = clock.last_dt;
     world.step_count = clock.step_count;
@@ -186,6 +189,7 @@ void Cycle::advance() {
     {
         PhaseTimer t{world.phase_seconds[ph_motion]};
         if (post_force) leapfrog_.kick(world.bodies, 0.5 * dt, true, world.parallel_min);
+        finish_clumps(0.5 * dt, dt);
         sum_energies(dt);
     }
     {
@@ -254,13 +258,24 @@ void Cycle::take_drift(const DriftResult& r) {
 // drift; without such a pass or correction, in one loop.
 void Cycle::kick_and_drift(double dt) {
     const DriftInputs in = drift_inputs();
+    Clumps& clumps = world.clumps;
+    if (clumps.size()) clump_motion_.hold_pebbles(clumps, world.bodies);
+    DriftResult balls;
     if (has_passes(PLAB_PHASE_PRE_DRIFT) || in.corrected()) {
         leapfrog_.kick(world.bodies, 0.5 * dt, false, world.parallel_min);
         run_passes(PLAB_PHASE_PRE_DRIFT);
-        take_drift(leapfrog_.drift(world.bodies, drift_inputs(), dt, world.parallel_min));
-        return;
+        balls = leapfrog_.drift(world.bodies, drift_inputs(), dt, world.parallel_min);
+    } else {
+        balls = leapfrog_.kick_and_drift(world.bodies, in, dt, world.parallel_min);
     }
-    take_drift(leapfrog_.kick_and_drift(world.bodies, in, dt, world.parallel_min));
+    if (clumps.size()) balls = clump_motion_.kick_and_drift(clumps, world.bodies, in, dt, balls, world.parallel_min);
+    take_drift(balls);
+}
+
+void Cycle::finish_clumps(double half_dt, double dt) {
+    if (!world.clumps.size()) { clump_energies_ = {}; return; }
+    clump_energies_ = clump_motion_.finish(world.clumps, world.bodies, world.gravity, half_dt, dt, world.parallel_min);
+    world.energies.local_damping += clump_energies_.local_damping;
 }
 
 
@@ -269,8 +284,8 @@ void Cycle::kick_and_drift(double dt) {
 // recomputed at the synchronised velocities.
 void Cycle::sum_energies(double dt) {
     // the bodies' part, summed per block by the closing kick or body_energies()
-    const double kinetic = leapfrog_.kinetic();
-    double boundary = leapfrog_.boundary_work();
+    const double kinetic = leapfrog_.kinetic() + clump_energies_.kinetic;
+    double boundary = leapfrog_.boundary_work() + clump_energies_.boundary;
     // contact energies, summed per batch of rows by scatter_rows()
     double strain = 0;
     for (const ContactSet* s : tables.sets)

@@ -18,6 +18,7 @@
 #include "detection/neighbour_lists.hpp"
 #include "detection/range_test.hpp"
 #include "forces/force_pipeline.hpp"
+#include "integration/clump_motion.hpp"
 #include "integration/leapfrog.hpp"
 #include "monitor/last_good.hpp"
 #include "monitor/monitor.hpp"
@@ -65,6 +66,9 @@ private:
     LastGoodState last_good_;
     bool at_last_good_ = false;
     Leapfrog leapfrog_;  // the law of motion; 1/m and 1/I cached by prepare()
+    ClumpMotion clump_motion_;  // the clumps' (their pebbles are the leapfrog's balls, held)
+    ClumpEnergies clump_energies_;  // of the last step's closing kick
+    Clumps kept_clumps_;  // the clumps at the last good state
 
 public:
     Reduction reduction;  // (after the tables it reads)
@@ -91,6 +95,8 @@ private:
     void kick_and_drift(double dt);
     void take_drift(const DriftResult& r);
     void sum_energies(double dt);
+    // the clumps' sums, closing half kick (0: none) and energies after a force pass
+    void finish_clumps(double half_dt, double dt);
 };
 
 } // namespace plab

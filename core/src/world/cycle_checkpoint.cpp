@@ -77,6 +77,59 @@ void load_rng(CheckpointReader& in) {
     if (in.u64() != 0) in.fail("it holds random-number generator states this build has no use for");
 }
 
+// The clumps (format 4): every column, and which clump each ball is a pebble of.
+void save_clumps(const World& w, CheckpointWriter& out) {
+    const Clumps& C = w.clumps;
+    out.section("clumps");
+    out.column(w.bodies.clump);
+    out.column(C.id);
+    for (const auto* v : {&C.position, &C.velocity, &C.angular_velocity, &C.angular_momentum, &C.principal_moments,
+                          &C.force, &C.moment, &C.pebble_offset})
+        out.vecs(*v);
+    out.u64(C.orientation.size());
+    for (const Eigen::Quaterniond& q : C.orientation)
+        for (double x : {q.w(), q.x(), q.y(), q.z()}) out.f64(x);
+    out.column(C.mass);
+    out.column(C.local_damping);
+    out.column(C.fixity);
+    out.column(C.group);
+    out.column(C.first_pebble);
+    out.column(C.pebble_body);
+}
+
+void load_clumps(World& w, int groups, CheckpointReader& in) {
+    Clumps& C = w.clumps;
+    in.section("clumps");
+    w.bodies.clump = in.column<std::int32_t>();
+    C.dim = w.dim;
+    C.id = in.column<BodyId>();
+    for (auto* v : {&C.position, &C.velocity, &C.angular_velocity, &C.angular_momentum, &C.principal_moments,
+                    &C.force, &C.moment, &C.pebble_offset})
+        *v = in.vecs();
+    C.orientation.resize(in.u64());
+    for (Eigen::Quaterniond& q : C.orientation) {
+        const double qw = in.f64(), qx = in.f64(), qy = in.f64(), qz = in.f64();
+        q = Eigen::Quaterniond(qw, qx, qy, qz);
+    }
+    C.mass = in.column<double>();
+    C.local_damping = in.column<double>();
+    C.fixity = in.column<std::uint8_t>();
+    C.group = in.column<int>();
+    C.first_pebble = in.column<std::size_t>();
+    C.pebble_body = in.column<std::int32_t>();
+    const std::size_t n = C.id.size();
+    bool whole = !w.bodies.clump.empty() ? w.bodies.clump.size() == w.bodies.size() : n == 0;
+    for (const auto* v : {&C.position, &C.velocity, &C.angular_velocity, &C.angular_momentum, &C.principal_moments,
+                          &C.force, &C.moment})
+        whole &= v->size() == n;
+    whole &= C.orientation.size() == n && C.mass.size() == n && C.local_damping.size() == n && C.fixity.size() == n &&
+             C.group.size() == n && C.first_pebble.size() == n + 1 && C.pebble_offset.size() == C.pebble_body.size() &&
+             !C.first_pebble.empty() && C.first_pebble.back() == C.pebble_body.size();
+    for (int g : C.group) whole &= g >= 0 && g < groups;
+    for (std::int32_t i : C.pebble_body) whole &= i >= 0 && std::size_t(i) < w.bodies.size();
+    if (!whole) in.fail("its clumps do not match its bodies (column sizes, pebble indices or groups)");
+}
+
 } // namespace
 
 std::vector<CheckpointSection> checkpoint_sections(Cycle& c) {
@@ -105,6 +158,11 @@ std::vector<CheckpointSection> checkpoint_sections(Cycle& c) {
          [&](CheckpointReader& in) {
              if (in.format() >= 2) load_stability(c.monitor.detector.baseline, in);
              else c.monitor.detector.measure_baseline(w.energies, w.bodies, w.walls, w.gravity);  // format 1: none saved
+         }},
+        {[&](CheckpointWriter& out) { save_clumps(w, out); },
+         [&, groups](CheckpointReader& in) {
+             if (in.format() >= 4) load_clumps(w, groups, in);
+             else w.clumps = Clumps{};  // before format 4: no clumps
          }},
     };
 }

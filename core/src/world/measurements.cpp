@@ -108,6 +108,11 @@ std::uint64_t state_hash(const World& w) {
         mix(w.bodies.velocity[i].data(), 3 * sizeof(double));
         mix(w.bodies.angular_velocity[i].data(), 3 * sizeof(double));
     }
+    // a clump's angular momentum and orientation are state its pebbles do not show
+    for (std::size_t c = 0; c < w.clumps.size(); ++c) {
+        mix(w.clumps.angular_momentum[c].data(), 3 * sizeof(double));
+        mix(w.clumps.orientation[c].coeffs().data(), 4 * sizeof(double));
+    }
     return h;
 }
 

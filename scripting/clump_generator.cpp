@@ -1,0 +1,300 @@
+// Clumps in a scene (clump_generator.hpp). A clump is written in its own
+// body frame: its shape centred at the origin (cylinders and rings along z)
+// and its pebbles where they sit on it; "position" and "orientation" place
+// that frame in the world. The kernel keeps the clump in its principal
+// frame about its centre of mass, worked out here.
+#include "clump_generator.hpp"
+
+#include "generators.hpp"
+#include "mesh_reader.hpp"
+
+#include <plab_host/mass_properties.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <unordered_map>
+
+namespace plab {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kUnionTolerance = 1e-4;  // relative, of a pebble union's volume and inertia
+
+// A clump as its template: pebbles in the principal frame, about the centre
+// of mass; where the body frame's origin and axes are in that frame.
+struct ClumpTemplate {
+    std::vector<PebbleSpec> pebbles;
+    double mass = 0;
+    Vec moments = Vec::Zero();
+    Eigen::Quaterniond principal_to_body = Eigen::Quaterniond::Identity();
+    Vec centroid = Vec::Zero();  // the centre of mass in the body frame
+    double reach = 0;            // the farthest pebble surface from the centre of mass
+    int group = 0;
+    std::uint8_t fixity = 0;
+    double local_damping = 0;
+};
+
+std::vector<Pebble> read_pebbles(const Node& list, int dim) {
+    list.expect_array();
+    if (list.size() == 0) list.fail("a clump needs at least one pebble, got an empty list");
+    if (list.size() > 100000) list.fail("value of " + std::to_string(list.size()) + " pebbles: at most 100000 per clump");
+    std::vector<Pebble> pebbles;
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        const Node p = list.at(k);
+        p.allow_keys({"position", "radius"});
+        pebbles.push_back({p.at("position").vec(dim), p.at("radius").positive()});
+    }
+    return pebbles;
+}
+
+// The shape's mass properties per unit density, in the body frame. A 2D
+// world's shapes are 1 m thick: a disc is a cylinder of height 1, a box's
+// depth is 1.
+MassProperties shape_properties(const Node& s, int dim, const std::string& scene_dir) {
+    const std::string type = s.at("type").choice({"sphere", "box", "cylinder", "ring", "mesh"});
+    if (type == "sphere") {
+        s.allow_keys({"type", "radius"});
+        const double r = s.at("radius").positive();
+        return dim == 2 ? cylinder_properties(r, 1.0) : sphere_properties(r);
+    }
+    if (type == "box") {
+        s.allow_keys({"type", "size"});
+        Vec half = 0.5 * s.at("size").vec(dim);
+        if (dim == 2) half.z() = 0.5;
+        for (int c = 0; c < 3; ++c)
+            if (!(half[c] > 0)) s.at("size").fail("every edge of a box must be positive, got " + show(s.at("size").value()));
+        return box_properties(half);
+    }
+    if (dim == 2 && type != "ring")
+        s.at("type").fail("shape \"" + type + "\" needs a 3D scene (a 2D scene's shapes: sphere (a disc), box, ring)");
+    if (type == "cylinder") {
+        s.allow_keys({"type", "radius", "height"});
+        return cylinder_properties(s.at("radius").positive(), s.at("height").positive());
+    }
+    if (type == "ring") {
+        s.allow_keys({"type", "outer_radius", "inner_radius", "height"});
+        const double outer = s.at("outer_radius").positive();
+        const double inner = s.at("inner_radius").number(0, outer, false, true);
+        return ring_properties(outer, inner, dim == 2 ? 1.0 : s.at("height").positive());
+    }
+    s.allow_keys({"type", "file", "scale"});
+    const std::string file = s.at("file").string();
+    const std::filesystem::path given(file);
+    const std::string path = given.is_absolute() ? file : (std::filesystem::path(scene_dir) / given).string();
+    const MeshFile m = read_mesh(path, file, s.at("file").path());
+    const double scale = s.number_or("scale", 1.0, 0.0, kInf, true, true);
+    std::vector<Triangle> triangles = m.triangles;
+    for (Triangle& t : triangles)
+        for (Vec& v : t) v *= scale;
+    MassProperties p = mesh_properties(triangles);
+    if (!(p.volume > 0))
+        s.at("file").fail("\"" + file + "\" encloses no positive volume (" + std::to_string(p.volume) +
+                          " m3): a closed mesh with outward normals is needed for the clump's mass");
+    return p;
+}
+
+// The rotation of a body frame: 2D, an angle in degrees about z; 3D,
+// {"axis": [x, y, z], "angle": degrees} or a unit quaternion [w, x, y, z].
+Eigen::Quaterniond read_orientation(const Node& n, int dim) {
+    if (dim == 2) return Eigen::Quaterniond(Eigen::AngleAxisd(n.number() * kPi / 180, Vec::UnitZ()));
+    if (n.value().is_array()) {
+        if (n.size() != 4) n.fail("expected a quaternion [w, x, y, z] or {\"axis\", \"angle\"}, got " + show(n.value()));
+        Eigen::Quaterniond q(n.at(0).number(), n.at(1).number(), n.at(2).number(), n.at(3).number());
+        if (!(std::fabs(q.norm() - 1) < 1e-6)) n.fail("a quaternion must have norm 1 (within 1e-6), got " + show(n.value()));
+        return q.normalized();
+    }
+    n.allow_keys({"axis", "angle"});
+    const Vec axis = n.at("axis").vec(3);
+    if (!(axis.norm() > 0)) n.at("axis").fail("the axis must not be zero, got " + show(n.at("axis").value()));
+    return Eigen::Quaterniond(Eigen::AngleAxisd(n.at("angle").number() * kPi / 180, axis.normalized()));
+}
+
+ClumpTemplate read_template(const Node& n, World& w, const std::string& scene_dir) {
+    const int dim = w.dim;
+    const std::vector<Pebble> pebbles = read_pebbles(n.at("pebbles"), dim);
+    MassProperties props;
+    if (n.has("shape")) {
+        props = shape_properties(n.at("shape"), dim, scene_dir);
+    } else {
+        const UnionProperties u = pebble_union_properties(pebbles, dim, kUnionTolerance);
+        if (!u.converged)
+            spdlog::warn("{}: the pebbles' union integrated to a relative change of {:.2g}, above {:.0e}; give a \"shape\"",
+                         n.path(), u.change, kUnionTolerance);
+        props = u.properties;
+    }
+    double density;
+    if (n.has("mass")) {
+        if (n.has("density")) n.at("mass").fail("give either \"density\" or \"mass\", not both");
+        density = n.at("mass").positive() / props.volume;
+    } else {
+        density = n.at("density").positive();
+    }
+    ClumpTemplate t;
+    t.mass = density * props.volume;
+    if (!(t.mass >= 1e-30 && t.mass <= 1e30)) {
+        std::ostringstream s;
+        s << "gives a clump mass of " << t.mass << " kg (volume " << props.volume << " m3): outside [1e-30, 1e30] kg";
+        n.at(n.has("mass") ? "mass" : "density").fail(s.str());
+    }
+    const Eigen::Matrix3d inertia = density * props.inertia;
+    t.centroid = props.centroid;
+    if (dim == 2) {
+        t.moments = Vec(0, 0, inertia(2, 2));  // the plane's own axes: only the turn about z is a DOF
+    } else {
+        const PrincipalAxes axes = principal_axes(inertia);
+        t.moments = axes.moments;
+        t.principal_to_body = axes.orientation;
+    }
+    if (dim == 2) t.centroid.z() = 0;
+    for (const Pebble& p : pebbles) {
+        const Vec offset = t.principal_to_body.conjugate() * (p.centre - t.centroid);
+        t.pebbles.push_back({offset, p.radius});
+        t.reach = std::max(t.reach, offset.norm() + p.radius);
+    }
+    t.group = w.group_index(n.string_or("group", "clumps"));
+    t.local_damping = n.number_or("local_damping", 0.0, 0.0, 1.0, false, true);
+    if (n.has("fix")) {
+        t.fixity = read_fixity(n.at("fix"));
+        const std::uint8_t rotations = dim == 2 ? dof_rz : (dof_rx | dof_ry | dof_rz);
+        const std::uint8_t fixed = t.fixity & rotations;
+        if (fixed && fixed != rotations)
+            n.at("fix").fail("a clump's rotation is fixed whole or not at all (\"rotation\"" +
+                             std::string(dim == 2 ? " or \"rz\"" : "") + "), got " + show(n.at("fix").value()));
+        if (dim == 2) t.fixity &= std::uint8_t(~(dof_z | dof_rx | dof_ry));
+    }
+    return t;
+}
+
+// The clump of template t with its body frame at `origin`, turned by `turn`.
+ClumpSpec place(const ClumpTemplate& t, const Vec& origin, const Eigen::Quaterniond& turn, const Vec& velocity,
+                const Vec& spin) {
+    ClumpSpec s;
+    s.position = origin + turn * t.centroid;
+    s.orientation = (turn * t.principal_to_body).normalized();
+    s.mass = t.mass;
+    s.principal_moments = t.moments;
+    s.velocity = velocity;
+    s.angular_velocity = spin;
+    s.pebbles = t.pebbles;
+    s.group = t.group;
+    s.fixity = t.fixity;
+    s.local_damping = t.local_damping;
+    return s;
+}
+
+} // namespace
+
+void generate_clump(const Node& n, World& w, const std::string& scene_dir) {
+    n.allow_keys({"type", "group", "pebbles", "shape", "density", "mass", "position", "orientation", "velocity",
+                  "angular_velocity", "fix", "local_damping"});
+    const ClumpTemplate t = read_template(n, w, scene_dir);
+    Vec spin = Vec::Zero();
+    if (n.has("angular_velocity")) {
+        if (w.dim == 2) spin.z() = n.at("angular_velocity").number();
+        else spin = n.at("angular_velocity").vec(3);
+    }
+    const Eigen::Quaterniond turn = n.has("orientation") ? read_orientation(n.at("orientation"), w.dim)
+                                                         : Eigen::Quaterniond::Identity();
+    w.add_clump(place(t, n.at("position").vec(w.dim), turn, n.vec_or("velocity", w.dim, Vec::Zero()), spin));
+}
+
+namespace {
+
+// The placed pebbles of a fill on a grid of cells one largest pebble
+// diameter wide, for the overlap test of a new clump.
+class PebbleGrid {
+public:
+    PebbleGrid(double cell, int dim) : cell_(cell), dim_(dim) {}
+    bool free(const Vec& c, double r) const {
+        const auto k = key_of(c);
+        for (long dz = dim_ == 3 ? -1 : 0; dz <= (dim_ == 3 ? 1 : 0); ++dz)
+            for (long dy = -1; dy <= 1; ++dy)
+                for (long dx = -1; dx <= 1; ++dx) {
+                    const auto it = cells_.find(hash(k[0] + dx, k[1] + dy, k[2] + dz));
+                    if (it == cells_.end()) continue;
+                    for (std::size_t i : it->second)
+                        if ((centres_[i] - c).norm() < radii_[i] + r) return false;
+                }
+        return true;
+    }
+    void add(const Vec& c, double r) {
+        const auto k = key_of(c);
+        cells_[hash(k[0], k[1], k[2])].push_back(centres_.size());
+        centres_.push_back(c);
+        radii_.push_back(r);
+    }
+
+private:
+    double cell_;
+    int dim_;
+    std::vector<Vec> centres_;
+    std::vector<double> radii_;
+    std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+    std::array<long, 3> key_of(const Vec& c) const {
+        return {long(std::floor(c.x() / cell_)), long(std::floor(c.y() / cell_)), dim_ == 3 ? long(std::floor(c.z() / cell_)) : 0};
+    }
+    static std::uint64_t hash(long x, long y, long z) {
+        return (std::uint64_t(x) * 73856093ull) ^ (std::uint64_t(y) * 19349663ull) ^ (std::uint64_t(z) * 83492791ull);
+    }
+};
+
+// A rotation drawn uniformly (Shoemake 1992: a uniform unit quaternion from
+// three uniform numbers); 2D: a uniform angle about z.
+Eigen::Quaterniond random_turn(Rng& rng, int dim) {
+    if (dim == 2) return Eigen::Quaterniond(Eigen::AngleAxisd(rng.uniform(0, 2 * kPi), Vec::UnitZ()));
+    const double u1 = rng.uniform(0, 1), u2 = rng.uniform(0, 2 * kPi), u3 = rng.uniform(0, 2 * kPi);
+    const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
+    return Eigen::Quaterniond(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3));
+}
+
+} // namespace
+
+void generate_clump_fill(const Node& n, World& w, const std::string& scene_dir) {
+    n.allow_keys({"type", "clump", "box", "count", "seed", "max_attempts"});
+    const Node tn = n.at("clump");
+    tn.allow_keys({"group", "pebbles", "shape", "density", "mass", "fix", "local_damping"});
+    const ClumpTemplate t = read_template(tn, w, scene_dir);
+    const Node bn = n.at("box");
+    bn.allow_keys({"min", "max"});
+    const Vec lo = bn.at("min").vec(w.dim), hi = bn.at("max").vec(w.dim);
+    // the body frame's origin stays far enough inside that no pebble leaves the box
+    const double margin = t.reach + t.centroid.norm();
+    for (int c = 0; c < w.dim; ++c)
+        if (!(hi[c] - lo[c] > 2 * margin))
+            bn.at("max").fail("the box must be wider than a clump (" + std::to_string(2 * margin) + " m) in every direction");
+    const long count = n.at("count").integer(1, 10000000);
+    Rng rng(std::uint64_t(n.has("seed") ? n.at("seed").integer(0, 1L << 40) : 1));
+    const long max_attempts = n.has("max_attempts") ? n.at("max_attempts").integer(1, 1L << 40) : 1000 * count;
+    double largest = 0;
+    for (const PebbleSpec& p : t.pebbles) largest = std::max(largest, p.radius);
+    PebbleGrid grid(2 * largest, w.dim);
+    long placed = 0, attempts = 0;
+    std::vector<Vec> centres(t.pebbles.size());
+    while (placed < count && attempts < max_attempts) {
+        ++attempts;
+        Vec origin = Vec::Zero();
+        for (int c = 0; c < w.dim; ++c) origin[c] = rng.uniform(lo[c] + margin, hi[c] - margin);
+        const ClumpSpec s = place(t, origin, random_turn(rng, w.dim), Vec::Zero(), Vec::Zero());
+        bool fits = true;
+        for (std::size_t p = 0; p < s.pebbles.size() && fits; ++p) {
+            centres[p] = s.position + s.orientation * s.pebbles[p].offset;
+            fits = grid.free(centres[p], s.pebbles[p].radius);
+        }
+        if (!fits) continue;
+        for (std::size_t p = 0; p < s.pebbles.size(); ++p) grid.add(centres[p], s.pebbles[p].radius);
+        w.add_clump(s);
+        ++placed;
+    }
+    if (placed < count) {
+        std::ostringstream s;
+        s << "could place only " << placed << " of " << count << " non-overlapping clumps in " << attempts
+          << " attempts; enlarge the box or lower the count";
+        n.at("count").fail(s.str());
+    }
+}
+
+} // namespace plab
