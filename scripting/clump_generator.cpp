@@ -13,7 +13,6 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <filesystem>
 #include <sstream>
 #include <unordered_map>
 
@@ -24,18 +23,14 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kUnionTolerance = 1e-4;  // relative, of a pebble union's volume and inertia
 
-// A clump as its template: pebbles in the principal frame, about the centre
-// of mass; where the body frame's origin and axes are in that frame.
+// A clump as its template: the clump at rest with its principal frame on
+// the world's axes (pebbles about the centre of mass), and where the body
+// frame's origin and axes are in that frame.
 struct ClumpTemplate {
-    std::vector<PebbleSpec> pebbles;
-    double mass = 0;
-    Vec moments = Vec::Zero();
+    ClumpSpec clump;
     Eigen::Quaterniond principal_to_body = Eigen::Quaterniond::Identity();
     Vec centroid = Vec::Zero();  // the centre of mass in the body frame
     double reach = 0;            // the farthest pebble surface from the centre of mass
-    int group = 0;
-    std::uint8_t fixity = 0;
-    double local_damping = 0;
 };
 
 std::vector<Pebble> read_pebbles(const Node& list, int dim) {
@@ -83,9 +78,7 @@ MassProperties shape_properties(const Node& s, int dim, const std::string& scene
     }
     s.allow_keys({"type", "file", "scale"});
     const std::string file = s.at("file").string();
-    const std::filesystem::path given(file);
-    const std::string path = given.is_absolute() ? file : (std::filesystem::path(scene_dir) / given).string();
-    const MeshFile m = read_mesh(path, file, s.at("file").path());
+    const MeshFile m = read_mesh(scene_path(scene_dir, file), file, s.at("file").path());
     const double scale = s.number_or("scale", 1.0, 0.0, kInf, true, true);
     std::vector<Triangle> triangles = m.triangles;
     for (Triangle& t : triangles)
@@ -134,37 +127,37 @@ ClumpTemplate read_template(const Node& n, World& w, const std::string& scene_di
         density = n.at("density").positive();
     }
     ClumpTemplate t;
-    t.mass = density * props.volume;
-    if (!(t.mass >= 1e-30 && t.mass <= 1e30)) {
+    t.clump.mass = density * props.volume;
+    if (!(t.clump.mass >= 1e-30 && t.clump.mass <= 1e30)) {
         std::ostringstream s;
-        s << "gives a clump mass of " << t.mass << " kg (volume " << props.volume << " m3): outside [1e-30, 1e30] kg";
+        s << "gives a clump mass of " << t.clump.mass << " kg (volume " << props.volume << " m3): outside [1e-30, 1e30] kg";
         n.at(n.has("mass") ? "mass" : "density").fail(s.str());
     }
     const Eigen::Matrix3d inertia = density * props.inertia;
     t.centroid = props.centroid;
     if (dim == 2) {
-        t.moments = Vec(0, 0, inertia(2, 2));  // the plane's own axes: only the turn about z is a DOF
+        t.clump.principal_moments = Vec(0, 0, inertia(2, 2));  // the plane's own axes: only the turn about z is a DOF
     } else {
         const PrincipalAxes axes = principal_axes(inertia);
-        t.moments = axes.moments;
+        t.clump.principal_moments = axes.moments;
         t.principal_to_body = axes.orientation;
     }
     if (dim == 2) t.centroid.z() = 0;
     for (const Pebble& p : pebbles) {
         const Vec offset = t.principal_to_body.conjugate() * (p.centre - t.centroid);
-        t.pebbles.push_back({offset, p.radius});
+        t.clump.pebbles.push_back({offset, p.radius});
         t.reach = std::max(t.reach, offset.norm() + p.radius);
     }
-    t.group = w.group_index(n.string_or("group", "clumps"));
-    t.local_damping = n.number_or("local_damping", 0.0, 0.0, 1.0, false, true);
+    t.clump.group = w.group_index(n.string_or("group", "clumps"));
+    t.clump.local_damping = n.number_or("local_damping", 0.0, 0.0, 1.0, false, true);
     if (n.has("fix")) {
-        t.fixity = read_fixity(n.at("fix"));
-        const std::uint8_t rotations = dim == 2 ? dof_rz : (dof_rx | dof_ry | dof_rz);
-        const std::uint8_t fixed = t.fixity & rotations;
+        t.clump.fixity = read_fixity(n.at("fix"));
+        const std::uint8_t rotations = rotation_dofs(dim);
+        const std::uint8_t fixed = t.clump.fixity & rotations;
         if (fixed && fixed != rotations)
             n.at("fix").fail("a clump's rotation is fixed whole or not at all (\"rotation\"" +
                              std::string(dim == 2 ? " or \"rz\"" : "") + "), got " + show(n.at("fix").value()));
-        if (dim == 2) t.fixity &= std::uint8_t(~(dof_z | dof_rx | dof_ry));
+        if (dim == 2) t.clump.fixity &= std::uint8_t(~(dof_z | dof_rx | dof_ry));
     }
     return t;
 }
@@ -172,17 +165,11 @@ ClumpTemplate read_template(const Node& n, World& w, const std::string& scene_di
 // The clump of template t with its body frame at `origin`, turned by `turn`.
 ClumpSpec place(const ClumpTemplate& t, const Vec& origin, const Eigen::Quaterniond& turn, const Vec& velocity,
                 const Vec& spin) {
-    ClumpSpec s;
+    ClumpSpec s = t.clump;
     s.position = origin + turn * t.centroid;
     s.orientation = (turn * t.principal_to_body).normalized();
-    s.mass = t.mass;
-    s.principal_moments = t.moments;
     s.velocity = velocity;
     s.angular_velocity = spin;
-    s.pebbles = t.pebbles;
-    s.group = t.group;
-    s.fixity = t.fixity;
-    s.local_damping = t.local_damping;
     return s;
 }
 
@@ -192,11 +179,7 @@ void generate_clump(const Node& n, World& w, const std::string& scene_dir) {
     n.allow_keys({"type", "group", "pebbles", "shape", "density", "mass", "position", "orientation", "velocity",
                   "angular_velocity", "fix", "local_damping"});
     const ClumpTemplate t = read_template(n, w, scene_dir);
-    Vec spin = Vec::Zero();
-    if (n.has("angular_velocity")) {
-        if (w.dim == 2) spin.z() = n.at("angular_velocity").number();
-        else spin = n.at("angular_velocity").vec(3);
-    }
+    const Vec spin = read_angular_velocity(n, w.dim);
     const Eigen::Quaterniond turn = n.has("orientation") ? read_orientation(n.at("orientation"), w.dim)
                                                          : Eigen::Quaterniond::Identity();
     w.add_clump(place(t, n.at("position").vec(w.dim), turn, n.vec_or("velocity", w.dim, Vec::Zero()), spin));
@@ -270,10 +253,10 @@ void generate_clump_fill(const Node& n, World& w, const std::string& scene_dir) 
     Rng rng(std::uint64_t(n.has("seed") ? n.at("seed").integer(0, 1L << 40) : 1));
     const long max_attempts = n.has("max_attempts") ? n.at("max_attempts").integer(1, 1L << 40) : 1000 * count;
     double largest = 0;
-    for (const PebbleSpec& p : t.pebbles) largest = std::max(largest, p.radius);
+    for (const PebbleSpec& p : t.clump.pebbles) largest = std::max(largest, p.radius);
     PebbleGrid grid(2 * largest, w.dim);
     long placed = 0, attempts = 0;
-    std::vector<Vec> centres(t.pebbles.size());
+    std::vector<Vec> centres(t.clump.pebbles.size());
     while (placed < count && attempts < max_attempts) {
         ++attempts;
         Vec origin = Vec::Zero();

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <optional>
 #include <sstream>
 
@@ -98,12 +99,8 @@ void single_ball(const Node& n, World& w) {
     n.allow_keys({"type", "group", "position", "radius", "density", "mass", "velocity", "angular_velocity", "fix",
                   "local_damping", "viscous_damping"});
     const Material m = read_material(n, w, false, true);
-    Vec spin = Vec::Zero();
-    if (n.has("angular_velocity")) {
-        if (w.dim == 2) spin.z() = n.at("angular_velocity").number();
-        else spin = n.at("angular_velocity").vec(3);
-    }
-    add(w, m, n.at("position").vec(w.dim), m.radius_lo, n.vec_or("velocity", w.dim, Vec::Zero()), spin);
+    add(w, m, n.at("position").vec(w.dim), m.radius_lo, n.vec_or("velocity", w.dim, Vec::Zero()),
+        read_angular_velocity(n, w.dim));
 }
 
 // About what a ball costs in a run (its columns, contacts, neighbour
@@ -420,6 +417,19 @@ Box random_fill(const Node& n, World& w, const GeneratorLimits& limits, const st
 }
 
 } // namespace
+
+Vec read_angular_velocity(const Node& n, int dim) {
+    Vec spin = Vec::Zero();
+    if (!n.has("angular_velocity")) return spin;
+    if (dim == 2) spin.z() = n.at("angular_velocity").number();
+    else spin = n.at("angular_velocity").vec(3);
+    return spin;
+}
+
+std::string scene_path(const std::string& scene_dir, const std::string& file) {
+    const std::filesystem::path given(file);
+    return given.is_absolute() ? file : (std::filesystem::path(scene_dir) / given).string();
+}
 
 std::uint8_t read_fixity(const Node& n) {
     n.expect_array();

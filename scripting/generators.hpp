@@ -90,5 +90,9 @@ std::string property_value_text(const plab_property_desc& d, double value, const
 // Degrees of freedom named in a "fix" list ("x", "y", "z", "rx", "ry", "rz",
 // "translation", "rotation", "all").
 std::uint8_t read_fixity(const Node& n);
+// An entry's "angular_velocity" (2D: a number, the spin about z; absent: zero).
+Vec read_angular_velocity(const Node& n, int dim);
+// A file the scene names, found in the scene's folder unless absolute.
+std::string scene_path(const std::string& scene_dir, const std::string& file);
 
 } // namespace plab

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <filesystem>
 #include <sstream>
 
 namespace plab {
@@ -113,9 +112,7 @@ void mesh(const Node& n, World& w, int wall, const std::string& scene_dir) {
     if (w.dim != 3)
         n.at("type").fail("wall type \"mesh\" needs a 3D scene (a 2D scene's walls are segments: use \"polyline\")");
     const std::string file = n.at("file").string();
-    const std::filesystem::path given(file);
-    const std::string path = given.is_absolute() ? file : (std::filesystem::path(scene_dir) / given).string();
-    const MeshFile m = read_mesh(path, file, n.at("file").path());
+    const MeshFile m = read_mesh(scene_path(scene_dir, file), file, n.at("file").path());
     const Placement place = mesh_placement(n);
     Vec lo = Vec::Constant(kInf), hi = Vec::Constant(-kInf);
     for (const Triangle& t : m.triangles) {

@@ -63,7 +63,7 @@ struct Bodies {
     // DOFs that can never move in this dimension (2D: z, rx, ry).
     std::uint8_t implicit_fixity() const { return dim == 2 ? (dof_z | dof_rx | dof_ry) : 0; }
     // The rotations this dimension lets a body have (2D: about z).
-    std::uint8_t rotation_dofs() const { return dim == 2 ? dof_rz : (dof_rx | dof_ry | dof_rz); }
+    std::uint8_t rotation_dofs() const { return plab::rotation_dofs(dim); }
 };
 
 } // namespace plab

@@ -55,6 +55,7 @@ struct Clumps {
     std::size_t pebble_count() const { return pebble_body.size(); }
     std::size_t pebbles_of(std::size_t c) const { return first_pebble[c + 1] - first_pebble[c]; }
     bool rotation_fixed(std::size_t c) const;
+    double smallest_moment(std::size_t c) const;  // the smallest positive principal moment, kg m^2
 
     // Adds the clump and its pebbles (balls of `bodies`, marked dof_clumped,
     // placed by the clump); returns the clump's index.

@@ -26,5 +26,7 @@ enum Dof : std::uint8_t { dof_x = 1, dof_y = 2, dof_z = 4, dof_rx = 8, dof_ry = 
 // Not a DOF: the ball is a pebble of a clump (plab_host/clumps.hpp), moved by
 // its clump; the leapfrog neither kicks it nor counts its energy.
 constexpr std::uint8_t dof_clumped = 64;
+// The rotations a body has in this dimension (2D: about z).
+constexpr std::uint8_t rotation_dofs(int dim) { return dim == 2 ? dof_rz : (dof_rx | dof_ry | dof_rz); }
 
 } // namespace plab

@@ -10,9 +10,15 @@
 
 namespace plab {
 
+double Clumps::smallest_moment(std::size_t c) const {
+    double smallest = kInf;
+    for (int k = 0; k < 3; ++k)
+        if (principal_moments[c][k] > 0) smallest = std::min(smallest, principal_moments[c][k]);
+    return smallest;
+}
+
 bool Clumps::rotation_fixed(std::size_t c) const {
-    const std::uint8_t rotations = dim == 2 ? dof_rz : (dof_rx | dof_ry | dof_rz);
-    return (fixity[c] & rotations) != 0;
+    return (fixity[c] & rotation_dofs(dim)) != 0;
 }
 
 std::size_t Clumps::add(const ClumpSpec& s, Bodies& bodies) {
@@ -22,18 +28,16 @@ std::size_t Clumps::add(const ClumpSpec& s, Bodies& bodies) {
     const std::size_t c = size();
     dim = bodies.dim;
     const Vec moments = bodies.dim == 2 ? Vec(0, 0, s.principal_moments.z()) : s.principal_moments;
-    // a pebble's inertia is the clump's smallest moment: what the stable
-    // step and a contact model's rolling terms see of the clump
-    double smallest = kInf;
-    for (int k = 0; k < 3; ++k)
-        if (moments[k] > 0) smallest = std::min(smallest, moments[k]);
-    if (!(smallest < kInf)) throw InputError("", "a clump needs a positive moment of inertia");
+    if (!(moments.maxCoeff() > 0)) throw InputError("", "a clump needs a positive moment of inertia");
     id.push_back(bodies.next_id++);
     position.push_back(s.position);
     velocity.push_back(s.velocity);
     angular_velocity.push_back(dim == 2 ? Vec(0, 0, s.angular_velocity.z()) : s.angular_velocity);
     orientation.push_back(s.orientation.normalized());
     principal_moments.push_back(moments);
+    // a pebble's inertia is the clump's smallest moment: what the stable
+    // step and a contact model's rolling terms see of the clump
+    const double smallest = smallest_moment(c);
     mass.push_back(s.mass);
     local_damping.push_back(s.local_damping);
     fixity.push_back(s.fixity);

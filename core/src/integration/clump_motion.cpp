@@ -13,13 +13,12 @@ namespace plab {
 namespace {
 
 // Half a kick of clump c: v += h F/M along free translations (thesis eq. 33),
-// L += h T when its rotation is free; a fixed DOF keeps its velocity.
+// L += h T when its rotation is free; a fixed DOF keeps its velocity. ω is
+// left for the caller to renew: the opening kick's turn renews it anyway.
 void kick_clump(Clumps& C, std::size_t c, double h) {
     for (int k = 0; k < 3; ++k)
         if (!(C.fixity[c] & (dof_x << k))) C.velocity[c][k] += h * C.force[c][k] / C.mass[c];
-    if (C.rotation_fixed(c)) return;
-    C.angular_momentum[c] += h * C.moment[c];
-    C.update_angular_velocity(c);
+    if (!C.rotation_fixed(c)) C.angular_momentum[c] += h * C.moment[c];
 }
 
 // L of a clump whose spin is prescribed: L = R I Rᵀ ω.
@@ -94,9 +93,7 @@ void ClumpMotion::hold_pebbles(const Clumps& C, Bodies& B) const {
 DriftResult ClumpMotion::kick_and_drift(Clumps& C, Bodies& B, const DriftInputs& in, double dt, DriftResult balls,
                                         std::size_t parallel_min) {
     const std::size_t n = C.size();
-    drift_work_.assign(n, 0.0);
-    drift_max2_.assign(n, 0.0);
-    out_.assign(n, 0);
+    drift_.assign(n, {});
     const bool tracked = in.position_at_build && in.position_at_build->size() == B.size();
 #pragma omp parallel for schedule(static) if (n >= parallel_min / 4)
     for (std::size_t c = 0; c < n; ++c) {
@@ -105,22 +102,20 @@ DriftResult ClumpMotion::kick_and_drift(Clumps& C, Bodies& B, const DriftInputs&
         C.position[c] += dx;
         turn_clump(C, c, dt);
         C.place_pebbles(B, c);
-        drift_work_[c] = C.mass[c] * in.gravity.dot(dx);
-        double max2 = 0;
-        bool out = false;
+        DriftResult& d = drift_[c];
+        d.body_work = C.mass[c] * in.gravity.dot(dx);
+        d.max_drift2 = 0;
         for (std::size_t p = C.first_pebble[c]; p < C.first_pebble[c + 1]; ++p) {
             const std::size_t i = std::size_t(C.pebble_body[p]);
             const Vec& x = B.position[i];
-            if (tracked) max2 = std::max(max2, (x - (*in.position_at_build)[i]).squaredNorm());
-            out |= !((x.array() >= in.lo.array()).all() && (x.array() <= in.hi.array()).all() && x.allFinite());
+            if (tracked) d.max_drift2 = std::max(d.max_drift2, (x - (*in.position_at_build)[i]).squaredNorm());
+            d.left_domain |= !((x.array() >= in.lo.array()).all() && (x.array() <= in.hi.array()).all() && x.allFinite());
         }
-        drift_max2_[c] = max2;
-        out_[c] = out;
     }
-    for (std::size_t c = 0; c < n; ++c) {
-        balls.body_work += drift_work_[c];
-        if (balls.max_drift2 >= 0) balls.max_drift2 = std::max(balls.max_drift2, drift_max2_[c]);
-        balls.left_domain |= out_[c] != 0;
+    for (const DriftResult& d : drift_) {
+        balls.body_work += d.body_work;
+        if (balls.max_drift2 >= 0) balls.max_drift2 = std::max(balls.max_drift2, d.max_drift2);
+        balls.left_domain |= d.left_domain;
     }
     return balls;
 }
@@ -128,26 +123,28 @@ DriftResult ClumpMotion::kick_and_drift(Clumps& C, Bodies& B, const DriftInputs&
 ClumpEnergies ClumpMotion::finish(Clumps& C, Bodies& B, const Vec& gravity, double half_dt, double dt,
                                   std::size_t parallel_min) {
     const std::size_t n = C.size();
-    kinetic_.assign(n, 0.0);
-    boundary_.assign(n, 0.0);
-    damping_.assign(n, 0.0);
+    energies_.assign(n, {});
 #pragma omp parallel for schedule(static) if (n >= parallel_min / 4)
     for (std::size_t c = 0; c < n; ++c) {
         sum_onto_clump(C, B, gravity, c);
-        damping_[c] = damp_clump(C, c, dt);
-        if (half_dt > 0) kick_clump(C, c, half_dt);
+        ClumpEnergies& e = energies_[c];
+        e.local_damping = damp_clump(C, c, dt);
+        if (half_dt > 0) {
+            kick_clump(C, c, half_dt);
+            C.update_angular_velocity(c);  // (a fixed spin keeps its ω)
+        }
         if (C.rotation_fixed(c)) C.angular_momentum[c] = prescribed_momentum(C, c);
         C.place_pebbles(B, c);  // (the positions are unchanged: the velocities are synchronised)
-        kinetic_[c] = C.kinetic_energy(c);
-        boundary_[c] = reaction_work(C, c, dt);
+        e.kinetic = C.kinetic_energy(c);
+        e.boundary = reaction_work(C, c, dt);
     }
-    ClumpEnergies e;
-    for (std::size_t c = 0; c < n; ++c) {
-        e.kinetic += kinetic_[c];
-        e.boundary += boundary_[c];
-        e.local_damping += damping_[c];
+    ClumpEnergies sum;
+    for (const ClumpEnergies& e : energies_) {
+        sum.kinetic += e.kinetic;
+        sum.boundary += e.boundary;
+        sum.local_damping += e.local_damping;
     }
-    return e;
+    return sum;
 }
 
 } // namespace plab

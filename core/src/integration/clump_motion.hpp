@@ -40,8 +40,9 @@ public:
                          std::size_t parallel_min);
 
 private:
-    std::vector<double> drift_work_, drift_max2_, kinetic_, boundary_, damping_;
-    std::vector<std::uint8_t> out_;
+    // per clump, added in clump order after the threaded loops
+    std::vector<DriftResult> drift_;
+    std::vector<ClumpEnergies> energies_;
 };
 
 } // namespace plab

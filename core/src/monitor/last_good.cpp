@@ -34,11 +34,16 @@ void keep_rows_with_history(const ModelInstance& inst, const ContactSet& c, std:
 } // namespace
 
 // Only the motion of the bodies: the force and moment totals follow from the state.
-void LastGoodState::keep(const Bodies& bodies, const Walls& walls, const BodyFields& fields, const Energies& energies,
-                         const Clock& clock, std::size_t bond_breaks, const Instances& instances) {
+void LastGoodState::keep(const Bodies& bodies, const Clumps& clumps, const Walls& walls, const BodyFields& fields,
+                         const Energies& energies, const Clock& clock, std::size_t bond_breaks, const Instances& instances) {
     position_ = bodies.position;
     velocity_ = bodies.velocity;
     angular_velocity_ = bodies.angular_velocity;
+    clump_position_ = clumps.position;
+    clump_velocity_ = clumps.velocity;
+    clump_angular_velocity_ = clumps.angular_velocity;
+    clump_angular_momentum_ = clumps.angular_momentum;
+    clump_orientation_ = clumps.orientation;
     walls_ = walls;
     fields_ = fields.columns();
     energies_ = energies;
@@ -54,11 +59,16 @@ void LastGoodState::keep(const Bodies& bodies, const Walls& walls, const BodyFie
     valid_ = true;
 }
 
-void LastGoodState::restore(Bodies& bodies, Walls& walls, BodyFields& fields, Energies& energies, Clock& clock,
-                            std::size_t& bond_breaks, Instances& instances) const {
+void LastGoodState::restore(Bodies& bodies, Clumps& clumps, Walls& walls, BodyFields& fields, Energies& energies,
+                            Clock& clock, std::size_t& bond_breaks, Instances& instances) const {
     bodies.position = position_;
     bodies.velocity = velocity_;
     bodies.angular_velocity = angular_velocity_;
+    clumps.position = clump_position_;
+    clumps.velocity = clump_velocity_;
+    clumps.angular_velocity = clump_angular_velocity_;
+    clumps.angular_momentum = clump_angular_momentum_;
+    clumps.orientation = clump_orientation_;
     walls = walls_;
     fields.set_columns(fields_);
     energies = energies_;

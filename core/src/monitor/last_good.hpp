@@ -8,6 +8,7 @@
 #pragma once
 
 #include <plab_host/bodies.hpp>
+#include <plab_host/clumps.hpp>
 #include <plab_host/energies.hpp>
 #include <plab_host/fields.hpp>
 #include <plab_host/walls.hpp>
@@ -29,10 +30,10 @@ class LastGoodState {
 public:
     bool valid() const { return valid_; }
     void drop() { valid_ = false; }
-    void keep(const Bodies& bodies, const Walls& walls, const BodyFields& fields, const Energies& energies,
-              const Clock& clock, std::size_t bond_breaks, const Instances& instances);
+    void keep(const Bodies& bodies, const Clumps& clumps, const Walls& walls, const BodyFields& fields,
+              const Energies& energies, const Clock& clock, std::size_t bond_breaks, const Instances& instances);
     // The state back; the contact tables hold the kept rows, to be rebuilt.
-    void restore(Bodies& bodies, Walls& walls, BodyFields& fields, Energies& energies, Clock& clock,
+    void restore(Bodies& bodies, Clumps& clumps, Walls& walls, BodyFields& fields, Energies& energies, Clock& clock,
                  std::size_t& bond_breaks, Instances& instances) const;
 
 private:
@@ -42,6 +43,9 @@ private:
     };
     bool valid_ = false;
     std::vector<Vec> position_, velocity_, angular_velocity_;
+    // the clumps' motion (their sums come back with the re-evaluation)
+    std::vector<Vec> clump_position_, clump_velocity_, clump_angular_velocity_, clump_angular_momentum_;
+    std::vector<Eigen::Quaterniond> clump_orientation_;
     Walls walls_;
     std::vector<std::vector<double>> fields_;
     Energies energies_;

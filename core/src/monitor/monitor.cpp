@@ -245,7 +245,7 @@ std::size_t Monitor::clump_timestep(const std::vector<double>& k_trans, const st
     const Clumps& C = in_.clumps;
     std::size_t limit = C.size();
     for (std::size_t c = 0; c < C.size(); ++c) {
-        double k = 0, k_turn = 0, smallest = kInf;
+        double k = 0, k_turn = 0;
         for (std::size_t p = C.first_pebble[c]; p < C.first_pebble[c + 1]; ++p) {
             const std::size_t i = std::size_t(C.pebble_body[p]);
             if (i >= k_trans.size()) continue;
@@ -253,8 +253,7 @@ std::size_t Monitor::clump_timestep(const std::vector<double>& k_trans, const st
             k += k_trans[i];
             k_turn += k_rot[i] + k_trans[i] * reach * reach;
         }
-        for (int d = 0; d < 3; ++d)
-            if (C.principal_moments[c][d] > 0) smallest = std::min(smallest, C.principal_moments[c][d]);
+        const double smallest = C.smallest_moment(c);
         if (k > 0 && std::sqrt(C.mass[c] / k) < best.critical) {
             best.critical = std::sqrt(C.mass[c] / k); limit = c; rotation = false;
         }

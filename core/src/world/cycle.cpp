@@ -137,8 +137,7 @@ void Cycle::step() {
 
 void Cycle::take_snapshot() {
     if (!prepared) prepare();
-    last_good_.keep(world.bodies, world.walls, world.fields, world.energies, {world.time, world.last_dt, world.step_count}, world.bond_breaks.size(), instances);
-    kept_clumps_ = world.clumps;
+    last_good_.keep(world.bodies, world.clumps, world.walls, world.fields, world.energies, {world.time, world.last_dt, world.step_count}, world.bond_breaks.size(), instances);
     monitor.keep_snapshot_step();
     if (world.on_snapshot) world.on_snapshot();
 }
@@ -150,8 +149,7 @@ void Cycle::take_snapshot() {
 void Cycle::restore_snapshot() {
     Clock clock;
     std::size_t breaks = 0;
-    last_good_.restore(world.bodies, world.walls, world.fields, world.energies, clock, breaks, instances);
-    world.clumps = kept_clumps_;
+    last_good_.restore(world.bodies, world.clumps, world.walls, world.fields, world.energies, clock, breaks, instances);
     world.time = clock.time;
     world.last_dt = clock.last_dt;
     world.step_count = clock.step_count;

@@ -68,7 +68,6 @@ private:
     Leapfrog leapfrog_;  // the law of motion; 1/m and 1/I cached by prepare()
     ClumpMotion clump_motion_;  // the clumps' (their pebbles are the leapfrog's balls, held)
     ClumpEnergies clump_energies_;  // of the last step's closing kick
-    Clumps kept_clumps_;  // the clumps at the last good state
 
 public:
     Reduction reduction;  // (after the tables it reads)
