@@ -10,6 +10,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
@@ -88,6 +89,50 @@ std::function<double(const World&)> field_probe(const Node& n, const World& w, c
     };
 }
 
+// clump.<vector>.<component> and clump.kinetic_energy of the clump "id"
+std::function<double(const World&)> clump_quantity(const Node& n, const World& w, const std::vector<std::string>& parts) {
+    const Node idn = n.at("id");
+    const BodyId id = BodyId(idn.integer(0, long(w.bodies.next_id) - 1));
+    const auto index = [id](const World& x) {
+        const auto& ids = x.clumps.id;
+        const auto it = std::find(ids.begin(), ids.end(), id);
+        return it == ids.end() ? -1 : int(it - ids.begin());
+    };
+    if (index(w) < 0) {
+        std::vector<std::string> ids;
+        for (BodyId c : w.clumps.id) ids.push_back(std::to_string(c));
+        idn.fail("no clump has id " + std::to_string(id) + listed("clump ids", ids));
+    }
+    if (parts.size() == 2)
+        return [index](const World& x) {
+            const int c = index(x);
+            return c < 0 ? std::nan("") : x.clumps.kinetic_energy(std::size_t(c));
+        };
+    const std::string which = parts[1];
+    const Node qn = n.at("quantity");
+    const int comp = component(qn, parts[2]);
+    using Column = std::vector<Vec> Clumps::*;
+    const std::pair<const char*, Column> columns[] = {
+        {"position", &Clumps::position}, {"velocity", &Clumps::velocity},
+        {"angular_velocity", &Clumps::angular_velocity}, {"angular_momentum", &Clumps::angular_momentum},
+        {"force", &Clumps::force}, {"moment", &Clumps::moment}};
+    for (const auto& [name, column] : columns)
+        if (which == name)
+            return [index, column, comp](const World& x) {
+                const int c = index(x);
+                return c < 0 ? std::nan("") : pick((x.clumps.*column)[std::size_t(c)], comp);
+            };
+    if (which == "principal_angular_velocity")  // about the principal axes, smallest moment first
+        return [index, comp](const World& x) {
+            const int c = index(x);
+            if (c < 0) return std::nan("");
+            return pick(x.clumps.orientation[std::size_t(c)].conjugate() * x.clumps.angular_velocity[std::size_t(c)], comp);
+        };
+    qn.fail("unknown clump quantity \"" + which +
+            "\"; use position, velocity, angular_velocity, principal_angular_velocity, angular_momentum, force or moment, "
+            "or kinetic_energy");
+}
+
 // One history column from its description.
 std::function<double(const World&)> quantity(const Node& n, const World& w) {
     const std::string q = n.at("quantity").string();
@@ -96,6 +141,7 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
     const char* known =
         "time, step, dt, contacts, unbalanced_ratio, bonds.intact, bonds.broken, "
         "energy.<kinetic|strain|body|boundary|slip|dashpot|local_damping|bond_break|balance>, ball.<position|velocity|angular_velocity|force|applied_force>.<x|y|z|magnitude> (with id), "
+        "clump.<position|velocity|angular_velocity|principal_angular_velocity|angular_momentum|force|moment>.<x|y|z|magnitude> or clump.kinetic_energy (with id), "
         "group.<max|min|mean>.<position|velocity|...>.<x|y|z|magnitude> (with group), wall.<force|moment>.<x|y|z> "
         "(with wall), probe.<field> (with point, radius, group), measure.<name> (with \"with\": {...}), or an \"expression\" of earlier columns";
     if (q == "time") return [](const World& x) { return x.time; };
@@ -129,6 +175,7 @@ std::function<double(const World&)> quantity(const Node& n, const World& w) {
             return i < 0 ? std::nan("") : pick(body_vector(body_vectors(x.bodies, which), std::size_t(i)), c);
         };
     }
+    if (parts[0] == "clump" && (parts.size() == 3 || q == "clump.kinetic_energy")) return clump_quantity(n, w, parts);
     if (parts[0] == "group" && parts.size() == 4 && vec_name) {
         const std::string g = n.at("group").string();
         const int group = w.find_group(g);
@@ -671,7 +718,9 @@ void Simulation::run() {
     if (!quiet_ && !resumed_) {
         w.prepare();
         const StableStep s = stable_timestep(w);
-        if (w.fixed_dt > 0) spdlog::info("timestep fixed at {:g} s; stable limit {:g} s ({})", w.fixed_dt, s.critical, s.limited_by);
+        if (w.fixed_dt > 0)
+            spdlog::info("timestep fixed at {:g} s; stable limit {:g} s ({})", w.fixed_dt, s.critical,
+                         s.limited_by.empty() ? "no contacts or models to limit it" : s.limited_by);
         else spdlog::info("timestep automatic: {:g} x critical {:g} s ({})", w.safety_factor, s.critical, s.limited_by);
     }
     if (!quiet_ && resumed_) {

@@ -23,6 +23,11 @@ const std::vector<QuantityInfo>& builtin() {
         {"ball.angular_velocity.<x|y|z|magnitude>", "rad/s", "one ball's (with \"id\")"},
         {"ball.force.<x|y|z|magnitude>", "N", "one ball's resultant force (with \"id\")"},
         {"ball.applied_force.<x|y|z|magnitude>", "N", "one ball's applied force (with \"id\")"},
+        {"clump.<position|velocity|angular_velocity|angular_momentum|force|moment>.<x|y|z|magnitude>", "as ball.*",
+         "one clump's (with \"id\"): angular momentum kg m^2/s, moment N m about its centre of mass"},
+        {"clump.principal_angular_velocity.<x|y|z|magnitude>", "rad/s",
+         "one clump's spin about its principal axes, smallest moment first (with \"id\")"},
+        {"clump.kinetic_energy", "J", "one clump's, translation and rotation (with \"id\")"},
         {"group.<max|min|mean>.<position|velocity|angular_velocity|force|applied_force>.<x|y|z|magnitude>",
          "as ball.*", "over a group's balls (with \"group\")"},
         {"wall.force.<x|y|z>", "N", "force of the balls on a wall (with \"wall\")"},
@@ -43,8 +48,10 @@ std::string measurement_unit(const std::string& doc) {
 std::string vector_unit(const std::string& what) {
     if (what == "position") return "m";
     if (what == "velocity") return "m/s";
-    if (what == "angular_velocity") return "rad/s";
+    if (what == "angular_velocity" || what == "principal_angular_velocity") return "rad/s";
     if (what == "force" || what == "applied_force") return "N";
+    if (what == "angular_momentum") return "kg m^2/s";
+    if (what == "moment") return "N m";
     return "";
 }
 
@@ -74,6 +81,7 @@ std::string quantity_unit(const std::string& quantity, const World& w) {
         if (q.name == quantity) return q.unit;
     if (parts[0] == "energy") return "J";
     if (parts[0] == "ball" && parts.size() == 3) return vector_unit(parts[1]);
+    if (parts[0] == "clump" && parts.size() == 3) return vector_unit(parts[1]);
     if (parts[0] == "group" && parts.size() == 4) return vector_unit(parts[2]);
     if (parts[0] == "wall" && parts.size() == 3) return parts[1] == "force" ? "N" : "N m";
     if (parts[0] == "probe" && parts.size() == 2) {

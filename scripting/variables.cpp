@@ -14,15 +14,22 @@ namespace {
 
 double ceil_of(double x) { return std::ceil(x); }
 double floor_of(double x) { return std::floor(x); }
+// K(k), the complete elliptic integral of the first kind (modulus k, |k| < 1):
+// analytic periods (a pendulum's, a torque-free top's flip)
+double elliptic_k(double k) { return std::fabs(k) < 1 ? std::comp_ellint_1(k) : std::nan(""); }
+
+// What the scene's expressions have beyond muParser's own.
+void define_extras(mu::Parser& p) {
+    p.DefineFun("ceil", ceil_of);
+    p.DefineFun("floor", floor_of);
+    p.DefineFun("elliptic_k", elliptic_k);
+    p.DefineConst("pi", M_PI);
+}
 
 // A muParser with the scene's values; std::map keeps their addresses fixed.
 class Evaluator {
 public:
-    Evaluator() {
-        parser_.DefineFun("ceil", ceil_of);
-        parser_.DefineFun("floor", floor_of);
-        parser_.DefineConst("pi", M_PI);
-    }
+    Evaluator() { define_extras(parser_); }
     // false with muParser's reason in `why` for a name it cannot take (a
     // function's or a constant's name)
     bool set(const std::string& name, double value, std::string& why) {
@@ -185,9 +192,7 @@ Expression::Expression(const std::string& text, const std::vector<std::string>& 
                        const std::vector<std::pair<std::string, double>>& fixed, const std::string& path)
     : parser_(std::make_unique<Parser>()) {
     mu::Parser& p = parser_->parser;
-    p.DefineFun("ceil", ceil_of);
-    p.DefineFun("floor", floor_of);
-    p.DefineConst("pi", M_PI);
+    define_extras(p);
     parser_->slots.assign(names.size(), 0.0);  // sized once: the parser holds their addresses
     try {
         for (const auto& [name, v] : fixed) {

@@ -4,7 +4,8 @@
 // and any string "$(expression)" elsewhere in the scene is replaced by the
 // expression's value. A resolution study is then one scene and
 // `--set variables.dp=0.0025`. Expressions are muParser's (+ - * / ^, sqrt,
-// exp, ln, log10, sin..., min, max, abs, rint, ?:) plus ceil, floor and pi.
+// exp, ln, log10, sin..., min, max, abs, rint, ?:) plus ceil, floor, pi and
+// elliptic_k(k), the complete elliptic integral of the first kind.
 // A variable may also be true/false or a name (a single word that names no
 // other variable, e.g. "pressure_mode": "extrapolated_gravity", for a choice
 // or a group property); such a one stands alone, "$(pressure_mode)".

@@ -45,6 +45,42 @@ TEST_CASE("scene variables may use each other in any order and fill the $(...) v
     CHECK(sim.world().bodies.radius[0] == 0.02);
 }
 
+TEST_CASE("elliptic_k is the complete elliptic integral of the first kind", "[scene]") {
+    // K(0) = pi/2; K(sin 30 deg) = 1.6857503548125961 (Abramowitz & Stegun table 17.1)
+    const json scene = resolve_variables(one_ball({{"k0", "elliptic_k(0)"}, {"k30", "elliptic_k(sin(pi / 6))"}}, 0.01));
+    CHECK(scene["variables"]["k0"].get<double>() == Approx(M_PI / 2).epsilon(1e-15));
+    CHECK(scene["variables"]["k30"].get<double>() == Approx(1.6857503548125961).epsilon(1e-14));
+    CHECK_THROWS_WITH(resolve_variables(one_ball({{"k", "elliptic_k(1)"}}, 0.01)), Contains("scene.variables.k") && Contains("not finite"));
+}
+
+TEST_CASE("a clump's history columns: its spin about the principal axes, its energy; a ball's id is not a clump's", "[scene][clump]") {
+    json scene = {{"dimension", 3}, {"gravity", {0, 0, 0}},
+                  {"bodies", {{{"type", "rigid"}, {"shape", {{"type", "box"}, {"size", {0.1, 0.2, 0.3}}}}, {"density", 1000},
+                               {"pebbles", {{{"position", {0, 0, 0}}, {"radius", 0.05}}}}, {"position", {1, 2, 3}},
+                               {"orientation", {{"axis", {0, 0, 1}}, {"angle", 90}}}, {"angular_velocity", {0, 2, 0}}},
+                              {{"type", "ball"}, {"position", {5, 0, 0}}, {"radius", 0.01}, {"density", 1000}}}},
+                  {"timestep", {{"fixed", 1e-3}}},
+                  {"histories", {{"every", 1}, {"record", {{{"name", "w_principal"}, {"quantity", "clump.principal_angular_velocity.x"}, {"id", 0}},
+                                                         {{"name", "w_largest"}, {"quantity", "clump.principal_angular_velocity.z"}, {"id", 0}},
+                                                         {{"name", "w_world"}, {"quantity", "clump.angular_velocity.magnitude"}, {"id", 0}},
+                                                         {{"name", "E"}, {"quantity", "clump.kinetic_energy"}, {"id", 0}},
+                                                         {{"name", "z"}, {"quantity", "clump.position.z"}, {"id", 0}}}}}},
+                  {"commands", {{{"cycle", 1}}}}};
+    Simulation sim(scene);
+    sim.set_quiet(true);
+    sim.run();
+    // turned 90 deg about z, the body's x axis lies along world y: the spin is about body x, whose
+    // moment m (b^2 + c^2) / 12 is the largest (principal z); none about the smallest's axis (body z)
+    const double m = 1000 * 0.1 * 0.2 * 0.3, I = m * (0.2 * 0.2 + 0.3 * 0.3) / 12;
+    CHECK(std::fabs(sim.history("w_principal")[0]) < 1e-12);
+    CHECK(std::fabs(sim.history("w_largest")[0]) == Approx(2).epsilon(1e-12));
+    CHECK(sim.history("w_world")[0] == Approx(2));
+    CHECK(sim.history("E")[0] == Approx(0.5 * I * 4).epsilon(1e-12));
+    CHECK(sim.history("z")[0] == 3);
+    scene["histories"]["record"][0]["id"] = 1;
+    CHECK_THROWS_WITH(Simulation(scene), Contains("scene.histories.record[0].id") && Contains("no clump has id 1"));
+}
+
 TEST_CASE("a scene without variables or expressions is left as it is", "[scene]") {
     const json scene = one_ball(json::object(), 0.01);
     CHECK(resolve_variables(scene) == scene);
