@@ -5,8 +5,8 @@
 // frame about its centre of mass, worked out here.
 #include "clump_generator.hpp"
 
+#include "body_shapes.hpp"
 #include "generators.hpp"
-#include "mesh_reader.hpp"
 
 #include <plab_host/mass_properties.hpp>
 
@@ -46,78 +46,22 @@ std::vector<Pebble> read_pebbles(const Node& list, int dim) {
     return pebbles;
 }
 
-// The shape's mass properties per unit density, in the body frame. A 2D
-// world's shapes are 1 m thick: a disc is a cylinder of height 1, a box's
-// depth is 1.
-MassProperties shape_properties(const Node& s, int dim, const std::string& scene_dir) {
-    const std::string type = s.at("type").choice({"sphere", "box", "cylinder", "ring", "mesh"});
-    if (type == "sphere") {
-        s.allow_keys({"type", "radius"});
-        const double r = s.at("radius").positive();
-        return dim == 2 ? cylinder_properties(r, 1.0) : sphere_properties(r);
-    }
-    if (type == "box") {
-        s.allow_keys({"type", "size"});
-        Vec half = 0.5 * s.at("size").vec(dim);
-        if (dim == 2) half.z() = 0.5;
-        for (int c = 0; c < 3; ++c)
-            if (!(half[c] > 0)) s.at("size").fail("every edge of a box must be positive, got " + show(s.at("size").value()));
-        return box_properties(half);
-    }
-    if (dim == 2 && type != "ring")
-        s.at("type").fail("shape \"" + type + "\" needs a 3D scene (a 2D scene's shapes: sphere (a disc), box, ring)");
-    if (type == "cylinder") {
-        s.allow_keys({"type", "radius", "height"});
-        return cylinder_properties(s.at("radius").positive(), s.at("height").positive());
-    }
-    if (type == "ring") {
-        s.allow_keys({"type", "outer_radius", "inner_radius", "height"});
-        const double outer = s.at("outer_radius").positive();
-        const double inner = s.at("inner_radius").number(0, outer, false, true);
-        return ring_properties(outer, inner, dim == 2 ? 1.0 : s.at("height").positive());
-    }
-    s.allow_keys({"type", "file", "scale"});
-    const std::string file = s.at("file").string();
-    const MeshFile m = read_mesh(scene_path(scene_dir, file), file, s.at("file").path());
-    const double scale = s.number_or("scale", 1.0, 0.0, kInf, true, true);
-    std::vector<Triangle> triangles = m.triangles;
-    for (Triangle& t : triangles)
-        for (Vec& v : t) v *= scale;
-    MassProperties p = mesh_properties(triangles);
-    if (!(p.volume > 0))
-        s.at("file").fail("\"" + file + "\" encloses no positive volume (" + std::to_string(p.volume) +
-                          " m3): a closed mesh with outward normals is needed for the clump's mass");
-    return p;
-}
-
-// The rotation of a body frame: 2D, an angle in degrees about z; 3D,
-// {"axis": [x, y, z], "angle": degrees} or a unit quaternion [w, x, y, z].
-Eigen::Quaterniond read_orientation(const Node& n, int dim) {
-    if (dim == 2) return Eigen::Quaterniond(Eigen::AngleAxisd(n.number() * kPi / 180, Vec::UnitZ()));
-    if (n.value().is_array()) {
-        if (n.size() != 4) n.fail("expected a quaternion [w, x, y, z] or {\"axis\", \"angle\"}, got " + show(n.value()));
-        Eigen::Quaterniond q(n.at(0).number(), n.at(1).number(), n.at(2).number(), n.at(3).number());
-        if (!(std::fabs(q.norm() - 1) < 1e-6)) n.fail("a quaternion must have norm 1 (within 1e-6), got " + show(n.value()));
-        return q.normalized();
-    }
-    n.allow_keys({"axis", "angle"});
-    const Vec axis = n.at("axis").vec(3);
-    if (!(axis.norm() > 0)) n.at("axis").fail("the axis must not be zero, got " + show(n.at("axis").value()));
-    return Eigen::Quaterniond(Eigen::AngleAxisd(n.at("angle").number() * kPi / 180, axis.normalized()));
-}
-
 ClumpTemplate read_template(const Node& n, World& w, const std::string& scene_dir) {
     const int dim = w.dim;
     const std::vector<Pebble> pebbles = read_pebbles(n.at("pebbles"), dim);
     MassProperties props;
+    BodySurface surface;
     if (n.has("shape")) {
-        props = shape_properties(n.at("shape"), dim, scene_dir);
+        BodyShape shape = read_shape(n.at("shape"), dim, scene_dir);
+        props = shape.properties;
+        surface = std::move(shape.surface);
     } else {
         const UnionProperties u = pebble_union_properties(pebbles, dim, kUnionTolerance);
         if (!u.converged)
             spdlog::warn("{}: the pebbles' union integrated to a relative change of {:.2g}, above {:.0e}; give a \"shape\"",
                          n.path(), u.change, kUnionTolerance);
         props = u.properties;
+        surface = pebbles_surface(pebbles, dim);
     }
     double density;
     if (n.has("mass")) {
@@ -143,6 +87,9 @@ ClumpTemplate read_template(const Node& n, World& w, const std::string& scene_di
         t.principal_to_body = axes.orientation;
     }
     if (dim == 2) t.centroid.z() = 0;
+    for (Vec& v : surface.vertices) v = t.principal_to_body.conjugate() * (v - t.centroid);
+    t.clump.surface = std::int32_t(w.clumps.surfaces.size());
+    w.clumps.surfaces.push_back(std::move(surface));
     for (const Pebble& p : pebbles) {
         const Vec offset = t.principal_to_body.conjugate() * (p.centre - t.centroid);
         t.clump.pebbles.push_back({offset, p.radius});

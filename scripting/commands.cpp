@@ -263,6 +263,69 @@ void Simulation::load_output(const Node& n) {
     if (n.has("png")) load_png_output(n.at("png"));
 }
 
+namespace {
+
+// The clumps whose pebbles a selection holds, once each, in index order;
+// the pebbles leave the selection (their clump moves them).
+std::vector<int> take_clumps(const World& w, std::vector<int>& sel) {
+    std::vector<int> clumps;
+    if (w.bodies.clump.empty()) return clumps;
+    std::vector<int> balls;
+    for (int i : sel) {
+        const std::int32_t c = w.bodies.clump[std::size_t(i)];
+        if (c < 0) balls.push_back(i);
+        else clumps.push_back(c);
+    }
+    std::sort(clumps.begin(), clumps.end());
+    clumps.erase(std::unique(clumps.begin(), clumps.end()), clumps.end());
+    sel = std::move(balls);
+    return clumps;
+}
+
+// A clump's spin set: ω, and the angular momentum L = R I R^T ω it stands for.
+void set_clump_spin(World& w, int c, const Vec& omega) {
+    Clumps& C = w.clumps;
+    const Eigen::Quaterniond& q = C.orientation[std::size_t(c)];
+    C.angular_velocity[std::size_t(c)] = omega;
+    C.angular_momentum[std::size_t(c)] = q * C.principal_moments[std::size_t(c)].cwiseProduct(q.conjugate() * omega);
+}
+
+using ClumpAction = std::function<void(World&, const std::vector<int>&)>;
+
+// What a `set` key does to the selected clumps (null: the key is not one
+// for clumps, an error when the selection holds one).
+ClumpAction clump_action(const Node& n, const char* key, int dim) {
+    const std::string k = key;
+    if (k == "velocity") {
+        const Vec v = n.at(key).vec(dim);
+        return [v](World& w, const std::vector<int>& cs) { for (int c : cs) w.clumps.velocity[std::size_t(c)] = v; };
+    }
+    if (k == "angular_velocity") {
+        const Vec om = dim == 2 ? Vec(0, 0, n.at(key).number()) : n.at(key).vec(3);
+        return [om](World& w, const std::vector<int>& cs) { for (int c : cs) set_clump_spin(w, c, om); };
+    }
+    if (k == "fix" || k == "free") {
+        const std::uint8_t f = read_fixity(n.at(key));
+        const std::uint8_t rotations = rotation_dofs(dim);
+        if ((f & rotations) && (f & rotations) != rotations)
+            n.at(key).fail("a clump's rotation is fixed whole or not at all (\"rotation\"), got " + show(n.at(key).value()));
+        const bool fix = k == "fix";
+        return [f, fix](World& w, const std::vector<int>& cs) {
+            for (int c : cs) {
+                std::uint8_t& x = w.clumps.fixity[std::size_t(c)];
+                x = fix ? std::uint8_t(x | f) : std::uint8_t(x & ~f);
+            }
+        };
+    }
+    if (k == "local_damping") {
+        const double a = n.at(key).number(0.0, 1.0, false, true);
+        return [a](World& w, const std::vector<int>& cs) { for (int c : cs) w.clumps.local_damping[std::size_t(c)] = a; };
+    }
+    return nullptr;
+}
+
+} // namespace
+
 std::function<void(World&)> Simulation::load_set(const Node& n) {
     n.allow_keys({"group", "id", "region", "wall", "velocity", "angular_velocity", "random_velocity", "fix", "free",
                   "applied_force", "local_damping", "viscous_damping", "gravity"});
@@ -340,9 +403,27 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
             const double a = n.at("local_damping").number(0.0, 1.0, false, true);
             on_balls.push_back([a](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.local_damping[i] = a; });
         }
-        actions.push_back([selector, on_balls](World& w) {
-            const std::vector<int> sel = selector(w);
+        // on clumps: their own motion, or an error naming the key
+        std::vector<ClumpAction> on_clumps;
+        std::vector<std::string> not_for_clumps;
+        for (const char* k : {"velocity", "angular_velocity", "random_velocity", "fix", "free", "applied_force",
+                              "viscous_damping", "local_damping"}) {
+            if (!n.has(k)) continue;
+            if (ClumpAction a = clump_action(n, k, dim)) on_clumps.push_back(std::move(a));
+            else not_for_clumps.push_back(k);
+        }
+        const std::string path = n.path();
+        actions.push_back([selector, on_balls, on_clumps, not_for_clumps, path](World& w) {
+            std::vector<int> sel = selector(w);
+            const std::vector<int> clumps = take_clumps(w, sel);
+            if (!clumps.empty() && !not_for_clumps.empty())
+                throw InputError(path + "." + not_for_clumps.front(),
+                                 "does not apply to a clump (the selection holds pebbles of clump id " +
+                                     std::to_string(w.clumps.id[std::size_t(clumps.front())]) +
+                                     "); a clump takes velocity, angular_velocity, fix, free and local_damping");
             for (const auto& a : on_balls) a(w, sel);
+            for (const auto& a : on_clumps) a(w, clumps);
+            for (int c : clumps) w.clumps.place_pebbles(w.bodies, std::size_t(c));
         });
     } else if (!n.has("gravity")) {
         n.fail("a set command needs a target: group, id, region or wall (or sets gravity)");
@@ -350,7 +431,15 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
     return [actions](World& w) { for (const auto& a : actions) a(w); };
 }
 
-// Bodies chosen by group, id and/or region (all given criteria must hold).
+namespace {
+bool is_pebble_of(const World& w, std::size_t ball, BodyId clump_id) {
+    if (w.bodies.clump.empty() || w.bodies.clump[ball] < 0) return false;
+    return w.clumps.id[std::size_t(w.bodies.clump[ball])] == clump_id;
+}
+} // namespace
+
+// Bodies chosen by group, id (a clump's id: its pebbles) and/or region (all
+// given criteria must hold).
 std::function<std::vector<int>(const World&)> Simulation::select(const Node& n, const World& w) const {
     int group = -1;
     if (n.has("group")) {
@@ -376,7 +465,7 @@ std::function<std::vector<int>(const World&)> Simulation::select(const Node& n, 
         std::vector<int> sel;
         for (std::size_t i = 0; i < world.bodies.size(); ++i) {
             if (group >= 0 && world.bodies.group[i] != group) continue;
-            if (id >= 0 && world.bodies.id[i] != BodyId(id)) continue;
+            if (id >= 0 && world.bodies.id[i] != BodyId(id) && !is_pebble_of(world, i, BodyId(id))) continue;
             const Vec& p = world.bodies.position[i];
             if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
             sel.push_back(int(i));

@@ -29,6 +29,10 @@ void Node::expect_array() const {
 }
 
 void Node::allow_keys(std::initializer_list<const char*> allowed) const {
+    allow_keys(std::vector<const char*>(allowed));
+}
+
+void Node::allow_keys(const std::vector<const char*>& allowed) const {
     expect_object();
     for (auto it = j_->begin(); it != j_->end(); ++it) {
         bool ok = false;

@@ -29,6 +29,7 @@ public:
 
     // Fails with the list of allowed keys when the object holds another one.
     void allow_keys(std::initializer_list<const char*> allowed) const;
+    void allow_keys(const std::vector<const char*>& allowed) const;  // a set built at run time
     Node at(const std::string& key) const;           // required member
     Node at(std::size_t index) const;                // array element
     std::size_t size() const { return j_->size(); }

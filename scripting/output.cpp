@@ -102,10 +102,12 @@ void Simulation::write_vtk_snapshot() {
     std::vector<std::string> parts = {"balls"};
     if (vtk_.any_contacts()) parts.push_back("contacts");
     if (vtk_.walls) parts.push_back("walls");
+    if (vtk_.bodies && world_->clumps.size() > 0) parts.push_back("bodies");
     for (const std::string& part : parts) {
         const std::string text = part == "balls"    ? balls_vtp(*world_, vtk_)
-                                 : part == "walls" ? walls_vtp(*world_, vtk_)
-                                                   : contacts_vtp(*world_, vtk_);
+                                 : part == "walls"  ? walls_vtp(*world_, vtk_)
+                                 : part == "bodies" ? bodies_vtp(*world_, vtk_)
+                                                    : contacts_vtp(*world_, vtk_);
         write_atomically(dir / "vtk" / (part + "_" + name + ".vtp"), text);
     }
     vtk_series_.emplace_back(world_->time, name);

@@ -25,7 +25,9 @@ public:
     explicit VtpWriter(const VtkOptions& opt) : opt_(opt) {}
 
     void points(const std::vector<double>& xyz) { points_ = real_array("", 3, xyz); }
-    void lines(bool l) { lines_ = l; }
+    enum class Cells { verts, lines, polys };
+    void cell_kind(Cells k) { kind_ = k; }
+    void lines(bool l) { kind_ = l ? Cells::lines : Cells::verts; }
     void cells(const std::vector<std::int64_t>& connectivity, const std::vector<std::int64_t>& offsets) {
         n_cells_ = offsets.size();
         cells_ = array_xml("connectivity", 1, connectivity) + array_xml("offsets", 1, offsets);
@@ -40,7 +42,7 @@ private:
     const VtkOptions& opt_;
     std::string points_, cells_, data_, field_data_, appended_;
     std::size_t n_cells_ = 0;
-    bool lines_ = false;
+    Cells kind_ = Cells::verts;
 
     std::string real_array(const std::string& name, int comps, const std::vector<double>& v) {
         if (!opt_.float32) return array_xml(name, comps, v);
@@ -118,11 +120,15 @@ std::string VtpWriter::finish(std::size_t n_points) const {
       << " header_type=\"UInt64\""
       << (opt_.encoding == VtkOptions::Encoding::zlib ? " compressor=\"vtkZLibDataCompressor\"" : "") << ">\n<PolyData>\n";
     if (!field_data_.empty()) s << "<FieldData>\n" << field_data_ << "</FieldData>\n";
-    s << "<Piece NumberOfPoints=\"" << n_points << "\" NumberOfVerts=\"" << (lines_ ? 0 : n_cells_)
-      << "\" NumberOfLines=\"" << (lines_ ? n_cells_ : 0) << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
-      << "<Points>\n" << points_ << "</Points>\n"
-      << (lines_ ? "<CellData>\n" : "<PointData>\n") << data_ << (lines_ ? "</CellData>\n" : "</PointData>\n")
-      << (lines_ ? "<Lines>\n" : "<Verts>\n") << cells_ << (lines_ ? "</Lines>\n" : "</Verts>\n")
+    // points carry the data of vertex cells, cells that of lines and polygons
+    const bool on_cells = kind_ != Cells::verts;
+    const char* cells = kind_ == Cells::verts ? "Verts" : kind_ == Cells::lines ? "Lines" : "Polys";
+    const auto count = [&](Cells k) { return kind_ == k ? n_cells_ : 0; };
+    s << "<Piece NumberOfPoints=\"" << n_points << "\" NumberOfVerts=\"" << count(Cells::verts)
+      << "\" NumberOfLines=\"" << count(Cells::lines) << "\" NumberOfStrips=\"0\" NumberOfPolys=\"" << count(Cells::polys)
+      << "\">\n<Points>\n" << points_ << "</Points>\n"
+      << (on_cells ? "<CellData>\n" : "<PointData>\n") << data_ << (on_cells ? "</CellData>\n" : "</PointData>\n")
+      << "<" << cells << ">\n" << cells_ << "</" << cells << ">\n"
       << "</Piece>\n</PolyData>\n";
     if (appended) s << "<AppendedData encoding=\"raw\">\n_" << appended_ << "\n</AppendedData>\n";
     s << "</VTKFile>\n";
@@ -145,7 +151,7 @@ std::vector<std::int64_t> iota(std::size_t n, std::int64_t from, std::int64_t st
 } // namespace
 
 VtkOptions read_vtk_options(const Node& n) {
-    n.allow_keys({"interval", "encoding", "precision", "contacts", "bonds", "pair_contacts", "walls"});
+    n.allow_keys({"interval", "encoding", "precision", "contacts", "bonds", "pair_contacts", "walls", "bodies", "pebbles"});
     VtkOptions o;
     o.interval = n.at("interval").positive();
     if (n.has("encoding")) {
@@ -155,32 +161,46 @@ VtkOptions read_vtk_options(const Node& n) {
     }
     if (n.has("precision")) o.float32 = n.at("precision").choice({"float64", "float32"}) == "float32";
     for (auto [key, flag] : {std::pair<const char*, bool*>{"contacts", &o.contacts}, {"bonds", &o.bonds},
-                             {"pair_contacts", &o.pair_contacts}, {"walls", &o.walls}})
+                             {"pair_contacts", &o.pair_contacts}, {"walls", &o.walls}, {"bodies", &o.bodies},
+                             {"pebbles", &o.pebbles}})
         if (n.has(key)) *flag = n.at(key).boolean();
     return o;
 }
 
+// The balls (all, or without the clumps' pebbles), column by column.
 std::string balls_vtp(const World& w, const VtkOptions& opt) {
     VtpWriter v(opt);
     const Bodies& b = w.bodies;
-    v.points(flatten(b.position));
-    v.cells(iota(b.size(), 0, 1), iota(b.size(), 1, 1));
-    v.add_real("radius", 1, b.radius);
-    v.add_int("id", std::vector<std::int64_t>(b.id.begin(), b.id.end()));
-    v.add_int("group", std::vector<std::int32_t>(b.group.begin(), b.group.end()));
+    std::vector<std::size_t> shown;
+    for (std::size_t i = 0; i < b.size(); ++i)
+        if (opt.pebbles || b.clump.empty() || b.clump[i] < 0) shown.push_back(i);
+    const auto pick = [&shown](const auto& column) {
+        std::vector<std::decay_t<decltype(column[0])>> out;
+        out.reserve(shown.size());
+        for (std::size_t i : shown) out.push_back(column[i]);
+        return out;
+    };
+    v.points(flatten(pick(b.position)));
+    v.cells(iota(shown.size(), 0, 1), iota(shown.size(), 1, 1));
+    v.add_real("radius", 1, pick(b.radius));
+    const auto ids = pick(b.id);
+    v.add_int("id", std::vector<std::int64_t>(ids.begin(), ids.end()));
+    const auto groups = pick(b.group);
+    v.add_int("group", std::vector<std::int32_t>(groups.begin(), groups.end()));
     v.add_names("group_names", w.group_names());
-    v.add_real("velocity", 3, flatten(b.velocity));
-    v.add_real("angular_velocity", 3, flatten(b.angular_velocity));
-    v.add_real("force", 3, flatten(b.force));
+    v.add_real("velocity", 3, flatten(pick(b.velocity)));
+    v.add_real("angular_velocity", 3, flatten(pick(b.angular_velocity)));
+    v.add_real("force", 3, flatten(pick(b.force)));
     for (std::size_t f = 0; f < w.fields.names().size(); ++f)
-        if (field_computed(w, int(f))) v.add_real(w.fields.names()[f], 1, w.fields.column(int(f)));
+        if (field_computed(w, int(f))) v.add_real(w.fields.names()[f], 1, pick(w.fields.column(int(f))));
     std::vector<double> stress;  // per-ball average stress, tension positive (row-major 3x3)
-    stress.reserve(9 * b.size());
-    for (const auto& sigma : ball_stress(w))
+    stress.reserve(9 * shown.size());
+    const auto sigma = ball_stress(w);
+    for (std::size_t i : shown)
         for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) stress.push_back(sigma(r, c));
+            for (int c = 0; c < 3; ++c) stress.push_back(sigma[i](r, c));
     v.add_real("stress", 9, stress);
-    return v.finish(b.size());
+    return v.finish(shown.size());
 }
 
 // Ball–ball contacts as lines between centres, with the contact force;
@@ -243,6 +263,42 @@ std::string walls_vtp(const World& w, const VtkOptions& opt) {
     std::vector<std::string> names;
     for (const auto& wall : w.walls.walls) names.push_back(wall.name);
     v.add_names("wall_names", names);
+    return v.finish(points.size() / 3);
+}
+
+// Each clump's surface (3D triangles, 2D edges) where it is now, with the
+// clump's id, group and velocity per face.
+std::string bodies_vtp(const World& w, const VtkOptions& opt) {
+    VtpWriter v(opt);
+    const Clumps& C = w.clumps;
+    const bool edges = w.dim == 2;
+    v.cell_kind(edges ? VtpWriter::Cells::lines : VtpWriter::Cells::polys);
+    std::vector<double> points, velocity;
+    std::vector<std::int64_t> connectivity, offsets, id;
+    std::vector<std::int32_t> group;
+    for (std::size_t c = 0; c < C.size(); ++c) {
+        if (C.surface[c] < 0) continue;
+        const BodySurface& s = C.surfaces[std::size_t(C.surface[c])];
+        const std::int64_t base = std::int64_t(points.size() / 3);
+        for (const Vec& local : s.vertices) {
+            const Vec p = C.position[c] + C.orientation[c] * local;
+            points.insert(points.end(), {p.x(), p.y(), p.z()});
+        }
+        const int corners = edges ? 2 : 3;
+        for (const auto& f : s.faces) {
+            for (int k = 0; k < corners; ++k) connectivity.push_back(base + f[std::size_t(k)]);
+            offsets.push_back(std::int64_t(connectivity.size()));
+            id.push_back(std::int64_t(C.id[c]));
+            group.push_back(std::int32_t(C.group[c]));
+            velocity.insert(velocity.end(), {C.velocity[c].x(), C.velocity[c].y(), C.velocity[c].z()});
+        }
+    }
+    v.points(points);
+    v.cells(connectivity, offsets);
+    v.add_int("id", id);
+    v.add_int("group", group);
+    v.add_names("group_names", w.group_names());
+    v.add_real("velocity", 3, velocity);
     return v.finish(points.size() / 3);
 }
 

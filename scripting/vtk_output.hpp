@@ -1,5 +1,5 @@
 // The VTK snapshot series: VTK XML PolyData (.vtp) files of the balls, the
-// contacts and the walls, with a .pvd collection for ParaView. Binary
+// contacts, the walls and the rigid bodies' surfaces, with a .pvd collection for ParaView. Binary
 // appended data, zlib-compressed by default (or raw), ASCII on request.
 #pragma once
 
@@ -20,15 +20,18 @@ struct VtkOptions {
     bool bonds = true;           // bonded contacts
     bool pair_contacts = false;  // interactions over a distance (SPH pairs, soft repulsion)
     bool walls = true;
+    bool bodies = true;    // rigid bodies' surfaces (a scene with clumps)
+    bool pebbles = true;   // the clumps' pebbles among the balls
     bool any_contacts() const { return contacts || bonds || pair_contacts; }
 };
 
 // scene.output.vtk: {"interval", "encoding", "precision", "contacts",
-// "bonds", "pair_contacts", "walls"}.
+// "bonds", "pair_contacts", "walls", "bodies", "pebbles"}.
 VtkOptions read_vtk_options(const Node& n);
 
 std::string balls_vtp(const World& w, const VtkOptions& opt);
 std::string contacts_vtp(const World& w, const VtkOptions& opt);
 std::string walls_vtp(const World& w, const VtkOptions& opt);
+std::string bodies_vtp(const World& w, const VtkOptions& opt);
 
 } // namespace plab

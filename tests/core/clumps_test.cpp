@@ -146,3 +146,30 @@ TEST_CASE("a pile of clumps gives the same bits with 1 and 2 threads and across 
     omp_set_num_threads(1);
 #endif
 }
+
+TEST_CASE("a set command moves and fixes a clump through its pebbles' group or its id, and refuses what a clump cannot take", "[clump][scene]") {
+    json scene = spinning_box({0, 0, 0});
+    scene["bodies"][0].erase("orientation");  // the principal axes on the world's
+    scene["commands"] = {{{"set", {{"group", "clumps"}, {"velocity", {1, 0, 0}}, {"angular_velocity", {2, 0, 0}}}}},
+                         {{"cycle", 10}},
+                         {{"set", {{"id", 0}, {"fix", {"x", "y", "z"}}, {"velocity", {0, -1, 0}}}}},
+                         {{"cycle", 10}}};
+    auto sim = start(scene, 1);
+    sim->run();
+    const Clumps& C = sim->world().clumps;
+    // 10 free steps at 1 m/s, then 10 at the fixed (prescribed) -1 m/s in y
+    CHECK(C.position[0].x() == Approx(0.01).epsilon(1e-12));
+    CHECK(C.position[0].y() == Approx(-0.01).epsilon(1e-12));
+    CHECK(C.velocity[0].x() == 0);
+    // a spin about the largest moment's axis (x: edges 0.2, 0.3) stays; L = I ω
+    CHECK(C.angular_velocity[0].x() == Approx(2).epsilon(1e-12));
+    CHECK(C.angular_momentum[0].x() == Approx(2 * 1000 * 0.1 * 0.2 * 0.3 * (0.04 + 0.09) / 12).epsilon(1e-12));
+    // the pebbles follow at once: the one at the centre moves with it
+    const Bodies& B = sim->world().bodies;
+    CHECK((B.velocity[0] - C.velocity[0]).norm() < 1e-12);
+    CHECK((B.angular_velocity[0] - C.angular_velocity[0]).norm() < 1e-12);
+    scene["commands"] = {{{"set", {{"group", "clumps"}, {"applied_force", {1, 0, 0}}}}}};
+    auto refused = start(scene, 1);
+    CHECK_THROWS_WITH(refused->run(), Catch::Matchers::Contains("scene.commands[0].set.applied_force") &&
+                                          Catch::Matchers::Contains("does not apply to a clump"));
+}

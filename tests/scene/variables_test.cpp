@@ -53,7 +53,7 @@ TEST_CASE("elliptic_k is the complete elliptic integral of the first kind", "[sc
     CHECK_THROWS_WITH(resolve_variables(one_ball({{"k", "elliptic_k(1)"}}, 0.01)), Contains("scene.variables.k") && Contains("not finite"));
 }
 
-TEST_CASE("a clump's history columns: its spin about the principal axes, its energy; a ball's id is not a clump's", "[scene][clump]") {
+TEST_CASE("a clump's history columns: its spin about the principal axes and its energy, and a ball's id is not a clump's", "[scene][clump]") {
     json scene = {{"dimension", 3}, {"gravity", {0, 0, 0}},
                   {"bodies", {{{"type", "rigid"}, {"shape", {{"type", "box"}, {"size", {0.1, 0.2, 0.3}}}}, {"density", 1000},
                                {"pebbles", {{{"position", {0, 0, 0}}, {"radius", 0.05}}}}, {"position", {1, 2, 3}},

@@ -11,6 +11,8 @@
 
 #include <Eigen/Geometry>
 
+#include <array>
+#include <cstdint>
 #include <vector>
 
 namespace plab {
@@ -18,6 +20,17 @@ namespace plab {
 struct PebbleSpec {
     Vec offset = Vec::Zero();  // the pebble's centre in the principal frame, from the centre of mass, m
     double radius = 0;
+};
+
+// A body's true surface in its principal frame, about the centre of mass:
+// 3D, triangles with outward normals by the right-hand rule; 2D, the
+// boundary's edges in z = 0 (a face's third index unused), outside
+// boundaries counter-clockwise, holes clockwise. For output and the coupling
+// to a resolved fluid; contacts are the pebbles'.
+struct BodySurface {
+    std::vector<Vec> vertices;
+    std::vector<std::array<std::int32_t, 3>> faces;
+    bool edges = false;  // 2D: faces are edges
 };
 
 struct ClumpSpec {
@@ -32,6 +45,7 @@ struct ClumpSpec {
     // DOF of the dimension) or not at all: a fixed DOF keeps its velocity
     std::uint8_t fixity = 0;
     double local_damping = 0;
+    std::int32_t surface = -1;  // its shape's in Clumps::surfaces; -1: none
 };
 
 struct Clumps {
@@ -50,6 +64,11 @@ struct Clumps {
     std::vector<std::size_t> first_pebble{0};
     std::vector<std::int32_t> pebble_body;  // the pebble's index in Bodies
     std::vector<Vec> pebble_offset;         // its centre in the principal frame, m
+    // the shapes' surfaces, one per clump template (a fill shares one), and
+    // each clump's (-1: none); built by the scene, not checkpointed: a
+    // restart builds them again from the scene
+    std::vector<BodySurface> surfaces;
+    std::vector<std::int32_t> surface;
 
     std::size_t size() const { return id.size(); }
     std::size_t pebble_count() const { return pebble_body.size(); }

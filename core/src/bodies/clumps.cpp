@@ -42,6 +42,8 @@ std::size_t Clumps::add(const ClumpSpec& s, Bodies& bodies) {
     local_damping.push_back(s.local_damping);
     fixity.push_back(s.fixity);
     group.push_back(s.group);
+    if (s.surface >= std::int32_t(surfaces.size())) throw InputError("", "a clump names a surface that was never added");
+    surface.push_back(s.surface);
     force.push_back(Vec::Zero());
     moment.push_back(Vec::Zero());
     // L = R I Rᵀ ω

@@ -128,6 +128,7 @@ void load_clumps(World& w, int groups, CheckpointReader& in) {
     for (int g : C.group) whole &= g >= 0 && g < groups;
     for (std::int32_t i : C.pebble_body) whole &= i >= 0 && std::size_t(i) < w.bodies.size();
     if (!whole) in.fail("its clumps do not match its bodies (column sizes, pebble indices or groups)");
+    if (C.surface.size() != n) C.surface.assign(n, -1);  // the scene's surfaces, kept when the scene built the same clumps
 }
 
 } // namespace
