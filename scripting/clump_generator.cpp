@@ -7,6 +7,7 @@
 
 #include "body_shapes.hpp"
 #include "generators.hpp"
+#include "pebble_fill.hpp"
 
 #include <plab_host/mass_properties.hpp>
 
@@ -14,6 +15,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace plab {
@@ -46,15 +48,53 @@ std::vector<Pebble> read_pebbles(const Node& list, int dim) {
     return pebbles;
 }
 
+// "pebbles": {"fill": {"tolerance", "radius": [min, max], "count"}}: the
+// shape's surface covered to the tolerance (pebble_fill.hpp). Without a
+// count, needing more than 1000 pebbles is an error; with one, stopping
+// there is a warning giving the deviation reached.
+std::vector<Pebble> fill_pebbles(const Node& fill, const BodySurface& surface, int dim) {
+    fill.allow_keys({"tolerance", "radius", "count"});
+    PebbleFillOptions o;
+    o.dim = dim;
+    o.tolerance = fill.at("tolerance").positive();
+    if (fill.has("radius")) {
+        const Node r = fill.at("radius");
+        if (!r.value().is_array() || r.size() != 2) r.fail("expected [min, max] pebble radii in m, got " + show(r.value()));
+        o.min_radius = r.at(0).number(0.0, kInf, false, true);
+        o.max_radius = r.at(1).positive();
+        if (!(o.max_radius >= o.min_radius)) r.fail("the largest radius must not be below the smallest, got " + show(r.value()));
+    }
+    const bool capped = fill.has("count");
+    o.max_count = capped ? std::size_t(fill.at("count").integer(1, 100000)) : 1000;
+    PebbleFill result;
+    try {
+        result = fill_with_pebbles(surface_triangles(surface), o);
+    } catch (const std::invalid_argument& e) {
+        fill.fail(e.what());
+    }
+    std::ostringstream s;
+    s << fill.path() << ": " << result.pebbles.size() << " pebbles, the surface within " << result.deviation
+      << " m of them (tolerance " << o.tolerance << " m)";
+    if (result.reached) spdlog::info("{}", s.str());
+    else if (capped) spdlog::warn("{}: the count stopped the fill first", s.str());
+    else fill.at("tolerance").fail("needs more than 1000 pebbles (" + s.str() + "); give a \"count\" or a larger tolerance");
+    return result.pebbles;
+}
+
 ClumpTemplate read_template(const Node& n, World& w, const std::string& scene_dir) {
     const int dim = w.dim;
-    const std::vector<Pebble> pebbles = read_pebbles(n.at("pebbles"), dim);
+    const Node pebble_node = n.at("pebbles");
+    const bool fill = pebble_node.value().is_object();
+    if (fill) pebble_node.allow_keys({"fill"});
+    if (fill && !n.has("shape")) pebble_node.fail("a pebble fill covers the clump's \"shape\": give one");
+    std::vector<Pebble> pebbles = fill ? std::vector<Pebble>{} : read_pebbles(pebble_node, dim);
     MassProperties props;
     BodySurface surface;
     if (n.has("shape")) {
         BodyShape shape = read_shape(n.at("shape"), dim, scene_dir);
         props = shape.properties;
         surface = std::move(shape.surface);
+        if (fill) pebbles = fill_pebbles(pebble_node.at("fill"), surface, dim);
     } else {
         const UnionProperties u = pebble_union_properties(pebbles, dim, kUnionTolerance);
         if (!u.converged)

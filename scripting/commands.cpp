@@ -807,10 +807,9 @@ void Simulation::run() {
     if (!quiet_ && !resumed_) {
         w.prepare();
         const StableStep s = stable_timestep(w);
-        if (w.fixed_dt > 0)
-            spdlog::info("timestep fixed at {:g} s; stable limit {:g} s ({})", w.fixed_dt, s.critical,
-                         s.limited_by.empty() ? "no contacts or models to limit it" : s.limited_by);
-        else spdlog::info("timestep automatic: {:g} x critical {:g} s ({})", w.safety_factor, s.critical, s.limited_by);
+        const std::string by = s.limited_by.empty() ? "no contacts or models to limit it" : s.limited_by;
+        if (w.fixed_dt > 0) spdlog::info("timestep fixed at {:g} s; stable limit {:g} s ({})", w.fixed_dt, s.critical, by);
+        else spdlog::info("timestep automatic: {:g} x critical {:g} s ({})", w.safety_factor, s.critical, by);
     }
     if (!quiet_ && resumed_) {
         spdlog::info("restarted at step {} (t = {:g} s), command {} of {}", w.step_count, w.time, next_command_ + 1,

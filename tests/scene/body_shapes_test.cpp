@@ -120,3 +120,29 @@ TEST_CASE("the VTK series draws each body's surface where the body is, and can l
     opt.pebbles = false;
     CHECK_THAT(balls_vtp(sim.world(), opt), Contains("NumberOfPoints=\"1\""));
 }
+
+TEST_CASE("a clump's pebbles can be filled from its shape to a surface tolerance", "[clump][shape][pebble_fill]") {
+    json scene = {{"dimension", 3},
+                  {"gravity", {0, 0, 0}},
+                  {"timestep", {{"fixed", 1e-3}}},
+                  {"bodies", {{{"type", "rigid"}, {"shape", {{"type", "box"}, {"size", {0.1, 0.2, 0.3}}}}, {"density", 1000},
+                               {"pebbles", {{"fill", {{"tolerance", 0.02}}}}}, {"position", {1, 2, 3}}}}}};
+    {
+        Simulation sim(scene);
+        const World& w = sim.world();
+        REQUIRE(w.clumps.size() == 1);
+        CHECK(w.clumps.pebbles_of(0) > 1);
+        // every pebble inside the box; the clump's mass the box's, not the pebbles'
+        for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+            const Vec d = (w.bodies.position[i] - Vec(1, 2, 3)).cwiseAbs() + Vec::Constant(w.bodies.radius[i]);
+            CHECK((d.array() <= Vec(0.05, 0.1, 0.15).array() + 1e-12).all());
+        }
+        CHECK(w.clumps.mass[0] == Approx(1000 * 0.1 * 0.2 * 0.3));
+    }
+    scene["bodies"][0]["pebbles"]["fill"]["tolerance"] = 0.003;  // would need more than 1000 (sharp edges need small pebbles)
+    CHECK_THROWS_WITH(Simulation(scene), Contains("scene.bodies[0].pebbles.fill.tolerance") && Contains("more than 1000 pebbles"));
+    scene["bodies"][0]["pebbles"]["fill"]["count"] = 5;  // the user's cap: a warning, and five pebbles
+    CHECK(Simulation(scene).world().clumps.pebbles_of(0) == 5);
+    scene["bodies"][0].erase("shape");
+    CHECK_THROWS_WITH(Simulation(scene), Contains("scene.bodies[0].pebbles") && Contains("give one"));
+}
