@@ -17,6 +17,7 @@
 #include "detection/range_test.hpp"
 #include "forces/packed_tables.hpp"
 #include "forces/still_instances.hpp"
+#include "passes/passes.hpp"
 #include "reduction/reduction.hpp"
 
 #include <cstdint>
@@ -37,13 +38,6 @@ struct ReadFields {
     std::uint64_t at_default = 0;
 };
 
-struct PassInstance {
-    const plab_pass_desc* desc = nullptr;
-    std::vector<double> props;
-    void* state = nullptr;
-    std::vector<int> fields;
-};
-
 // What the pipeline reads and writes.
 struct ForceInputs {
     const int dim;
@@ -52,7 +46,7 @@ struct ForceInputs {
     BodyFields& fields;
     const AssignmentTable& groups;
     Instances& instances;
-    const std::vector<PassInstance>& passes;
+    const Passes& passes;
     const std::vector<ContactSet*>& sets;  // every table, instance m's at 2m (balls) and 2m + 1 (walls)
     const std::vector<const ModelInstance*>& set_owner;
     const BodyContacts& body_contacts;

@@ -32,6 +32,7 @@ Cycle::Cycle(World& w, std::shared_ptr<PluginHost> plugins)
     : world(w), host(std::move(plugins)),
       reduction({w.dim, w.bodies, w.walls, w.fields, w.gravity, instances, tables.sets, tables.owner, tables.body_contacts, w.energies,
                  w.last_dt, w.parallel_min}),
+      passes({w.dim, w.bodies, w.fields, pass_contacts, w.time, w.last_dt}),
       forces({w.dim, w.bodies, w.walls, w.fields, assignment, instances, passes, tables.sets, tables.owner, tables.body_contacts,
               pass_contacts, w.bond_breaks, w.time, w.step_count, w.last_dt, w.parallel_min},
              reduction),
@@ -42,51 +43,16 @@ Cycle::Cycle(World& w, std::shared_ptr<PluginHost> plugins)
 Cycle::~Cycle() {
     for (auto& inst : instances)
         if (inst->desc->destroy && inst->state) inst->desc->destroy(inst->state);
-    for (auto& p : passes)
-        if (p.desc->destroy && p.state) p.desc->destroy(p.state);
 }
 
 
 
-
-bool Cycle::has_passes(std::uint32_t phase) const {
-    return std::any_of(passes.begin(), passes.end(), [phase](const PassInstance& p) { return p.desc->phase == phase; });
-}
 
 void Cycle::run_passes(std::uint32_t phase) {
     if (passes.empty()) return;
-    std::vector<double*> cols;
-    for (auto& p : passes) {
-        if (p.desc->phase != phase) continue;
-        cols.clear();
-        for (int f : p.fields) cols.push_back(world.fields.column(f).data());
-        plab_pass_view v{sizeof(plab_pass_view)};
-        v.dim = uint32_t(world.dim);
-        v.body_count = uint32_t(world.bodies.size());
-        v.dt = world.last_dt;
-        v.time = world.time;
-        v.position = world.bodies.position.empty() ? nullptr : world.bodies.position[0].data();
-        v.velocity = world.bodies.velocity.empty() ? nullptr : world.bodies.velocity[0].data();
-        v.force = world.bodies.force.empty() ? nullptr : world.bodies.force[0].data();
-        v.radius = world.bodies.radius.data();
-        v.mass = world.bodies.mass.data();
-        v.group = world.bodies.group.data();
-        v.fields = cols.data();
-        v.contact_count = uint32_t(pass_contacts.size());
-        v.contact_end1 = pass_contacts.end1();
-        v.contact_end2 = pass_contacts.end2();
-        v.contact_end2_is_wall = pass_contacts.end2_is_wall();
-        // the distances hold at these positions while the range test's lists do
-        v.contact_distance = pass_contacts.distance(forces.pass_distances_current());
-        char diagnostic[2048];  // room for a pass's advice (sph_eos: ~800 characters)
-        diagnostic[0] = '\0';
-        v.diagnostic = diagnostic;
-        v.diagnostic_capacity = sizeof diagnostic;
-        const int rc = p.desc->run(p.state, p.props.data(), &v);
-        if (rc == PLAB_PASS_UNSTABLE) monitor.stop(monitor.pass_diagnostic(p.desc->name, diagnostic));
-        if (rc != 0)
-            throw RunError(std::string("pass '") + p.desc->name + "' failed at step " + std::to_string(world.step_count));
-    }
+    passes.run(phase, forces.pass_distances_current(), world.step_count, [this](const std::string& pass, const char* diagnostic) {
+        monitor.stop(monitor.pass_diagnostic(pass, diagnostic));
+    });
 }
 
 void Cycle::prepare() {
@@ -181,7 +147,7 @@ void Cycle::advance() {
     }
     world.time += dt;
     ++world.step_count;
-    const bool post_force = has_passes(PLAB_PHASE_POST_FORCE);
+    const bool post_force = passes.any_at(PLAB_PHASE_POST_FORCE);
     forces.write_contact_forces(!world.contact_forces_wanted || world.contact_forces_wanted());
     force_pass(post_force ? 0.0 : 0.5 * dt);  // the closing half kick inside reduce(), unless a pass comes between
     {
@@ -259,7 +225,7 @@ void Cycle::kick_and_drift(double dt) {
     Clumps& clumps = world.clumps;
     if (clumps.size()) clump_motion_.hold_pebbles(clumps, world.bodies);
     DriftResult balls;
-    if (has_passes(PLAB_PHASE_PRE_DRIFT) || in.corrected()) {
+    if (passes.any_at(PLAB_PHASE_PRE_DRIFT) || in.corrected()) {
         leapfrog_.kick(world.bodies, 0.5 * dt, false, world.parallel_min);
         run_passes(PLAB_PHASE_PRE_DRIFT);
         balls = leapfrog_.drift(world.bodies, drift_inputs(), dt, world.parallel_min);

@@ -22,6 +22,7 @@
 #include "integration/leapfrog.hpp"
 #include "monitor/last_good.hpp"
 #include "monitor/monitor.hpp"
+#include "passes/passes.hpp"
 #include "reduction/reduction.hpp"
 
 #include <array>
@@ -54,9 +55,9 @@ public:
     std::shared_ptr<PluginHost> host;  // (every world holds it: no model outlives its code)
     AssignmentTable assignment;        // groups and PFC's assignment table (contacts/)
     Instances instances;               // the contact-model instances with their tables (contacts/)
-    std::vector<PassInstance> passes;  // in the order they run
     NeighbourLists neighbours;         // (detection/)
     PassContacts pass_contacts;        // the active contacts the passes see (only when a pass is loaded)
+    Passes passes;                     // (passes/; after the contacts they see)
     bool prepared = false;             // forces are those of the current scene (prepare())
 
 private:
@@ -83,7 +84,6 @@ private:
     // between them)
     void force_pass(double closing_kick = 0);
     void run_passes(std::uint32_t phase);
-    bool has_passes(std::uint32_t phase) const;
     // the tables after a neighbour search (rebuild.cpp)
     void rebuild();
     void install(const CarryContext& carry, ModelInstance& inst, ContactSet& set, PairList& pairs, TableBuffers& t);

@@ -3,7 +3,7 @@
 #include "bodies/bodies_checkpoint.hpp"
 #include "contacts/contacts_checkpoint.hpp"
 #include "detection/detection_checkpoint.hpp"
-#include "host/passes_checkpoint.hpp"
+#include "passes/passes_checkpoint.hpp"
 #include "monitor/monitor_checkpoint.hpp"
 #include "world/cycle.hpp"
 
@@ -152,7 +152,7 @@ std::vector<CheckpointSection> checkpoint_sections(Cycle& c) {
          }},
         {[&, detection](CheckpointWriter& out) { save_detection(detection, c.monitor.summed_stiffness(), out); },
          [&, detection](CheckpointReader& in) { load_detection(detection, c.monitor.stiffness, w.bodies.size(), in); }},
-        {[&](CheckpointWriter& out) { save_passes(c.passes, *c.host, out); }, [&](CheckpointReader& in) { load_passes(c.passes, *c.host, in); }},
+        {[&](CheckpointWriter& out) { save_passes(c.passes.instances(), *c.host, out); }, [&](CheckpointReader& in) { load_passes(c.passes.instances(), *c.host, in); }},
         {[&](CheckpointWriter& out) { save_bond_breaks(w.bond_breaks, out); }, [&](CheckpointReader& in) { load_bond_breaks(w.bond_breaks, in); }},
         {[](CheckpointWriter& out) { save_rng(out); }, [](CheckpointReader& in) { load_rng(in); }},
         {[&](CheckpointWriter& out) { save_stability(c.monitor.detector.baseline, out); },

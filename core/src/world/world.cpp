@@ -92,12 +92,7 @@ void World::add_pass(const std::string& name, std::vector<double> props) {
     if (d->create && !p.state) throw PluginError("pass '" + name + "' failed to create its state");
     for (uint32_t f = 0; f < d->field_count; ++f)
         p.fields.push_back(register_field(d->fields[f].name, d->fields[f].default_value, d->fields[f].unit));
-    // stable order: by phase, then stage, then order of addition
-    auto it = cycle->passes.begin();
-    while (it != cycle->passes.end() &&
-           (it->desc->phase < d->phase || (it->desc->phase == d->phase && it->desc->stage <= d->stage)))
-        ++it;
-    cycle->passes.insert(it, std::move(p));
+    cycle->passes.add(std::move(p));
 }
 
 StabilityLimits& World::stability_limits() { return cycle->monitor.detector.limits; }

@@ -7,7 +7,7 @@
 #include <plab_host/checkpoint.hpp>
 #include <plab_host/plugins.hpp>
 
-#include "forces/force_pipeline.hpp"
+#include "passes/passes.hpp"
 
 #include <vector>
 

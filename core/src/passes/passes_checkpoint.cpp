@@ -1,4 +1,4 @@
-#include "host/passes_checkpoint.hpp"
+#include "passes/passes_checkpoint.hpp"
 
 #include <string>
 
