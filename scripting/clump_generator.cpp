@@ -169,7 +169,7 @@ void generate_clump(const Node& n, World& w, const std::string& scene_dir) {
     const Vec spin = read_angular_velocity(n, w.dim);
     const Eigen::Quaterniond turn = n.has("orientation") ? read_orientation(n.at("orientation"), w.dim)
                                                          : Eigen::Quaterniond::Identity();
-    w.add_clump(place(t, n.at("position").vec(w.dim), turn, n.vec_or("velocity", w.dim, Vec::Zero()), spin));
+    add_clump(w, place(t, n.at("position").vec(w.dim), turn, n.vec_or("velocity", w.dim, Vec::Zero()), spin));
 }
 
 namespace {
@@ -256,7 +256,7 @@ void generate_clump_fill(const Node& n, World& w, const std::string& scene_dir) 
         }
         if (!fits) continue;
         for (std::size_t p = 0; p < s.pebbles.size(); ++p) grid.add(centres[p], s.pebbles[p].radius);
-        w.add_clump(s);
+        add_clump(w, s);
         ++placed;
     }
     if (placed < count) {

@@ -80,8 +80,6 @@ public:
     // Registers a field at every body (BodyFields::add).
     int register_field(const std::string& name, double default_value, const char* unit = nullptr);
     void add_pass(const std::string& name, std::vector<double> props);
-    // Adds a clump and its pebbles (Clumps::add); returns its index.
-    std::size_t add_clump(const ClumpSpec& spec);
     void set_skin(double skin);  // m; < 0: a quarter of the mean radius
 
     // ---- time stepping ----
@@ -150,6 +148,9 @@ public:
 // ---- observing a world ----
 // Critical step from the contacts of the last force pass, and from a
 // nominal contact per assigned group pair (before any contact exists).
+// Adds a clump and its pebbles to the world (Clumps::add); returns its index.
+std::size_t add_clump(World& w, const ClumpSpec& spec);
+
 StableStep stable_timestep(const World& w);
 StableStep nominal_timestep(const World& w);
 std::uint64_t state_hash(const World& w);  // FNV-1a over positions, velocities, spins

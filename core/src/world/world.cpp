@@ -31,9 +31,9 @@ void World::set_max_overlap(std::size_t instance, double fraction_of_radius) {
 int World::register_field(const std::string& name, double default_value, const char* unit) {
     return fields.add(name, default_value, unit, bodies.size());
 }
-std::size_t World::add_clump(const ClumpSpec& spec) {
-    const std::size_t c = clumps.add(spec, bodies);
-    mark_dirty();
+std::size_t add_clump(World& w, const ClumpSpec& spec) {
+    const std::size_t c = w.clumps.add(spec, w.bodies);
+    w.mark_dirty();
     return c;
 }
 void World::set_skin(double skin) { cycle->neighbours.skin = skin; }
