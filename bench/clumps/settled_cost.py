@@ -4,7 +4,9 @@ of the pebbles' size poured into the same box (as cost.py), each settled for
 T_SETTLE s of simulated time with local damping 0.7 and checkpointed; then
 each restarts from its checkpoint for STEPS steps, twice, interleaved, and
 the resumed runs' particle-steps per second (pebbles counted as particles)
-are compared. Usage: bench/clumps/settled_cost.py build/plab [N] [T_SETTLE] [STEPS]"""
+are compared. Usage: bench/clumps/settled_cost.py build/plab [N] [T_SETTLE] [STEPS] [WORK_DIR]
+(a WORK_DIR that holds the settled checkpoints of an earlier call with the
+same N and T_SETTLE is reused: the settling is the long part)"""
 import json, os, re, subprocess, sys, tempfile
 
 plab = sys.argv[1]
@@ -30,9 +32,12 @@ def rate(out):
     m = re.search(r"([0-9.e+]+) particle-steps/s.*?([0-9]+) contacts", out)
     return float(m.group(1)), int(m.group(2))
 
-work = tempfile.mkdtemp()
+work = sys.argv[5] if len(sys.argv) > 5 else tempfile.mkdtemp()
 checkpoints = {}
 for name, scene in scenes.items():
+    if os.path.exists(os.path.join(work, name, "checkpoint.plab")):
+        checkpoints[name] = os.path.join(work, name, "checkpoint.plab")
+        continue
     path = os.path.join(work, name + ".json")
     json.dump(scene, open(path, "w"))
     out = os.path.join(work, name)
