@@ -116,9 +116,9 @@ std::function<double(const World&)> clump_quantity(const Node& n, const World& w
         {"position", &Clumps::position}, {"velocity", &Clumps::velocity},
         {"angular_velocity", &Clumps::angular_velocity}, {"angular_momentum", &Clumps::angular_momentum},
         {"force", &Clumps::force}, {"moment", &Clumps::moment}};
-    for (const auto& [name, column] : columns)
-        if (which == name)
-            return [index, column, comp](const World& x) {
+    for (const auto& named : columns)  // (a structured binding cannot be captured before C++20)
+        if (which == named.first)
+            return [index, column = named.second, comp](const World& x) {
                 const int c = index(x);
                 return c < 0 ? std::nan("") : pick((x.clumps.*column)[std::size_t(c)], comp);
             };
