@@ -16,8 +16,8 @@ namespace plab {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kMaxInside = 2e5;   // lattice points inside the shape (each costs a distance to the surface)
-constexpr double kMaxLattice = 2e6;  // lattice points in the bounding box (outside ones are mostly skipped)
+constexpr double kMaxInside = 5e4;   // lattice points inside the shape (each costs a distance to the surface)
+constexpr double kMaxLattice = 5e5;  // lattice points in the bounding box (outside ones are mostly skipped)
 constexpr double kMaxSamples = 2e5;  // surface samples (the cover and the deviation visit each)
 constexpr std::size_t kLeafSize = 16;
 

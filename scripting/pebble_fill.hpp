@@ -38,10 +38,10 @@
 // Cost: each lattice point's distance is brute force over the triangles
 // (pruned by bounding spheres), fine for meshes of up to a few thousand
 // triangles. The lattice spacing is tolerance / 4, coarsened so that about
-// 2e5 points at most fall inside (and 2e6 in the bounding box); a surface
-// that would need more than 2e5 samples at this tolerance is refused. At
-// those caps a fill takes 1 to 3 s on one core (Release, a 1280-triangle
-// icosphere or a box at 2 % of its size; 5120 triangles, 3 to 4 s).
+// 5e4 points at most fall inside (and 5e5 in the bounding box), which keeps
+// a fill under a second on one core (Release) for meshes of a few hundred
+// triangles; a surface that would need more than 2e5 samples at this
+// tolerance is refused.
 #pragma once
 
 #include <plab_host/mass_properties.hpp>  // Pebble, Triangle
