@@ -16,9 +16,14 @@ namespace plab {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kMaxInside = 5e4;   // lattice points inside the shape (each costs a distance to the surface)
-constexpr double kMaxLattice = 5e5;  // lattice points in the bounding box (outside ones are mostly skipped)
-constexpr double kMaxSamples = 2e5;  // surface samples (the cover and the deviation visit each)
+#ifdef PLAB_FUZZ_BUDGETS
+constexpr double kBudget = 1.0 / 50;  // the sanitized fuzz build runs ~100x slower: the same paths, smaller
+#else
+constexpr double kBudget = 1;
+#endif
+constexpr double kMaxInside = 5e4 * kBudget;   // lattice points inside the shape (each costs a distance to the surface)
+constexpr double kMaxLattice = 5e5 * kBudget;  // lattice points in the bounding box (outside ones are mostly skipped)
+constexpr double kMaxSamples = 2e5 * kBudget;  // surface samples (the cover and the deviation visit each)
 constexpr std::size_t kLeafSize = 16;
 
 std::string number(double x) {
