@@ -11,7 +11,6 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <sstream>
 
 namespace plab {
 
@@ -151,8 +150,6 @@ MassProperties combined(const std::vector<MassProperties>& parts) {
 }
 
 double planar_radius2(const Vec& p) { return p.x() * p.x() + p.y() * p.y(); }
-
-BodyShape analytic_shape(const Node& s, const std::string& type, int dim, const std::vector<const char*>& extra_keys);
 
 std::vector<const char*> with(std::vector<const char*> keys, const std::vector<const char*>& extra) {
     keys.insert(keys.end(), extra.begin(), extra.end());

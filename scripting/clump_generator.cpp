@@ -137,15 +137,7 @@ ClumpTemplate read_template(const Node& n, World& w, const std::string& scene_di
     }
     t.clump.group = w.group_index(n.string_or("group", "clumps"));
     t.clump.local_damping = n.number_or("local_damping", 0.0, 0.0, 1.0, false, true);
-    if (n.has("fix")) {
-        t.clump.fixity = read_fixity(n.at("fix"));
-        const std::uint8_t rotations = rotation_dofs(dim);
-        const std::uint8_t fixed = t.clump.fixity & rotations;
-        if (fixed && fixed != rotations)
-            n.at("fix").fail("a clump's rotation is fixed whole or not at all (\"rotation\"" +
-                             std::string(dim == 2 ? " or \"rz\"" : "") + "), got " + show(n.at("fix").value()));
-        if (dim == 2) t.clump.fixity &= std::uint8_t(~(dof_z | dof_rx | dof_ry));
-    }
+    if (n.has("fix")) t.clump.fixity = read_clump_fixity(n.at("fix"), dim);
     return t;
 }
 
@@ -161,6 +153,17 @@ ClumpSpec place(const ClumpTemplate& t, const Vec& origin, const Eigen::Quaterni
 }
 
 } // namespace
+
+std::uint8_t read_clump_fixity(const Node& fix, int dim) {
+    std::uint8_t f = read_fixity(fix);
+    const std::uint8_t rotations = rotation_dofs(dim);
+    const std::uint8_t fixed = f & rotations;
+    if (fixed && fixed != rotations)
+        fix.fail("a clump's rotation is fixed whole or not at all (\"rotation\"" + std::string(dim == 2 ? " or \"rz\"" : "") +
+                 "), got " + show(fix.value()));
+    if (dim == 2) f &= std::uint8_t(~(dof_z | dof_rx | dof_ry));
+    return f;
+}
 
 void generate_clump(const Node& n, World& w, const std::string& scene_dir) {
     n.allow_keys({"type", "group", "pebbles", "shape", "density", "mass", "position", "orientation", "velocity",

@@ -1,6 +1,7 @@
 // The command sequence (cycle, solve, set, output) and recorded histories.
 #include <plab_host/errors.hpp>
 
+#include "clump_generator.hpp"
 #include "generators.hpp"
 #include "measurements/measurement.hpp"
 #include "metrics.hpp"
@@ -89,15 +90,16 @@ std::function<double(const World&)> field_probe(const Node& n, const World& w, c
     };
 }
 
+int clump_index(const World& w, BodyId id) {
+    const auto it = std::find(w.clumps.id.begin(), w.clumps.id.end(), id);
+    return it == w.clumps.id.end() ? -1 : int(it - w.clumps.id.begin());
+}
+
 // clump.<vector>.<component> and clump.kinetic_energy of the clump "id"
 std::function<double(const World&)> clump_quantity(const Node& n, const World& w, const std::vector<std::string>& parts) {
     const Node idn = n.at("id");
     const BodyId id = BodyId(idn.integer(0, long(w.bodies.next_id) - 1));
-    const auto index = [id](const World& x) {
-        const auto& ids = x.clumps.id;
-        const auto it = std::find(ids.begin(), ids.end(), id);
-        return it == ids.end() ? -1 : int(it - ids.begin());
-    };
+    const auto index = [id](const World& x) { return clump_index(x, id); };
     if (index(w) < 0) {
         std::vector<std::string> ids;
         for (BodyId c : w.clumps.id) ids.push_back(std::to_string(c));
@@ -282,14 +284,6 @@ std::vector<int> take_clumps(const World& w, std::vector<int>& sel) {
     return clumps;
 }
 
-// A clump's spin set: ω, and the angular momentum L = R I R^T ω it stands for.
-void set_clump_spin(World& w, int c, const Vec& omega) {
-    Clumps& C = w.clumps;
-    const Eigen::Quaterniond& q = C.orientation[std::size_t(c)];
-    C.angular_velocity[std::size_t(c)] = omega;
-    C.angular_momentum[std::size_t(c)] = q * C.principal_moments[std::size_t(c)].cwiseProduct(q.conjugate() * omega);
-}
-
 using ClumpAction = std::function<void(World&, const std::vector<int>&)>;
 
 // What a `set` key does to the selected clumps (null: the key is not one
@@ -301,14 +295,11 @@ ClumpAction clump_action(const Node& n, const char* key, int dim) {
         return [v](World& w, const std::vector<int>& cs) { for (int c : cs) w.clumps.velocity[std::size_t(c)] = v; };
     }
     if (k == "angular_velocity") {
-        const Vec om = dim == 2 ? Vec(0, 0, n.at(key).number()) : n.at(key).vec(3);
-        return [om](World& w, const std::vector<int>& cs) { for (int c : cs) set_clump_spin(w, c, om); };
+        const Vec om = read_angular_velocity(n, dim);
+        return [om](World& w, const std::vector<int>& cs) { for (int c : cs) w.clumps.set_spin(std::size_t(c), om); };
     }
     if (k == "fix" || k == "free") {
-        const std::uint8_t f = read_fixity(n.at(key));
-        const std::uint8_t rotations = rotation_dofs(dim);
-        if ((f & rotations) && (f & rotations) != rotations)
-            n.at(key).fail("a clump's rotation is fixed whole or not at all (\"rotation\"), got " + show(n.at(key).value()));
+        const std::uint8_t f = read_clump_fixity(n.at(key), dim);
         const bool fix = k == "fix";
         return [f, fix](World& w, const std::vector<int>& cs) {
             for (int c : cs) {
@@ -346,9 +337,7 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
             actions.push_back([wall, v](World& w) { w.walls.walls[wall].velocity = v; });
         }
         if (n.has("angular_velocity")) {
-            Vec om = Vec::Zero();
-            if (dim == 2) om.z() = n.at("angular_velocity").number();
-            else om = n.at("angular_velocity").vec(3);
+            const Vec om = read_angular_velocity(n, dim);
             actions.push_back([wall, om](World& w) { w.walls.walls[wall].angular_velocity = om; });
         }
     } else if (n.has("group") || n.has("id") || n.has("region")) {
@@ -360,9 +349,7 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
             on_balls.push_back([v](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.velocity[i] = v; });
         }
         if (n.has("angular_velocity")) {
-            Vec om = Vec::Zero();
-            if (dim == 2) om.z() = n.at("angular_velocity").number();
-            else om = n.at("angular_velocity").vec(3);
+            const Vec om = read_angular_velocity(n, dim);
             on_balls.push_back([om](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.angular_velocity[i] = om; });
         }
         if (n.has("random_velocity")) {  // as LAMMPS's `velocity create`: each component uniform in [-a, a], seeded

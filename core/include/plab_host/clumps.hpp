@@ -84,6 +84,8 @@ struct Clumps {
     void place_pebbles(Bodies& bodies, std::size_t c) const;
     // ω from L at the current orientation (after L or the orientation changed).
     void update_angular_velocity(std::size_t c);
+    // ω of clump c set, and the angular momentum L = R I Rᵀ ω it stands for.
+    void set_spin(std::size_t c, const Vec& omega);
     // kinetic energy of clump c, translation and rotation (½ M v² + ½ L·ω)
     double kinetic_energy(std::size_t c) const;
 };

@@ -46,9 +46,8 @@ std::size_t Clumps::add(const ClumpSpec& s, Bodies& bodies) {
     surface.push_back(s.surface);
     force.push_back(Vec::Zero());
     moment.push_back(Vec::Zero());
-    // L = R I Rᵀ ω
-    const Eigen::Matrix3d R = orientation[c].toRotationMatrix();
-    angular_momentum.push_back(R * moments.asDiagonal() * (R.transpose() * angular_velocity[c]));
+    angular_momentum.push_back(Vec::Zero());
+    set_spin(c, angular_velocity[c]);
     update_angular_velocity(c);
     for (const PebbleSpec& p : s.pebbles) {
         BallSpec b;
@@ -68,6 +67,12 @@ std::size_t Clumps::add(const ClumpSpec& s, Bodies& bodies) {
     first_pebble.push_back(pebble_body.size());
     place_pebbles(bodies, c);
     return c;
+}
+
+void Clumps::set_spin(std::size_t c, const Vec& omega) {
+    const Eigen::Matrix3d R = orientation[c].toRotationMatrix();
+    angular_velocity[c] = omega;
+    angular_momentum[c] = R * principal_moments[c].asDiagonal() * (R.transpose() * omega);
 }
 
 void Clumps::update_angular_velocity(std::size_t c) {
