@@ -130,3 +130,56 @@ TEST_CASE("plab plugins --describe names the tangential history a model declares
     CHECK(!y_line.empty());
     CHECK(y_line.find("contact plane") == std::string::npos);  // (the flag is on the vector's first slot only)
 }
+
+namespace {
+
+// A settling pile bouncing in its box, following one of the probes of
+// tests/plugins/active_rows_probe.cpp: contacts made, lost and made again.
+json bouncing_probe_pile(int dim, const std::string& model) {
+    json scene = probe_pile(dim, model);
+    scene["plugins"] = {std::string(PLAB_TEST_PLUGIN_DIR) + "/active_rows_probe.so"};
+    scene["bodies"][0]["velocity"] = dim == 2 ? json::array({0.0, -0.5}) : json::array({0.0, -0.5, 0.0});
+    return scene;
+}
+
+// Rows of s out of range whose history is not back at its default (0), and
+// rows in range, counted.
+struct RowsSeen { std::size_t remembered = 0, out_of_range = 0, in_range = 0; };
+RowsSeen check_forgotten(const ContactTable& s) {
+    RowsSeen r;
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        if (s.active(k)) { ++r.in_range; continue; }
+        ++r.out_of_range;
+        r.remembered += s.history(k)[0] != 0.0;
+    }
+    return r;
+}
+
+} // namespace
+
+TEST_CASE("every batch reaches its model with active rows only, and a separated contact's history is forgotten",
+          "[forces][history]") {
+    for (const char* model : {"active_rows_probe", "active_rows_probe_centres", "active_rows_probe_summed"})
+        for (int dim : {2, 3}) {
+            INFO("model " << model << ", dim " << dim);
+            Simulation sim(bouncing_probe_pile(dim, model));
+            sim.set_quiet(true);
+            RowsSeen balls, walls;
+            for (int c = 0; c < 20; ++c) {
+                sim.cycle(50);  // (an inactive row in a batch would give a NaN force: a RunError)
+                const ModelView inst = sim.world().model(0);
+                for (auto [seen, table] : {std::pair{&balls, inst.balls()}, std::pair{&walls, inst.walls()}}) {
+                    const RowsSeen now = check_forgotten(table);
+                    seen->remembered += now.remembered;
+                    seen->out_of_range += now.out_of_range;
+                    seen->in_range += now.in_range;
+                }
+            }
+            CHECK(balls.remembered == 0);
+            CHECK(walls.remembered == 0);
+            CHECK(balls.out_of_range > 100);  // (candidates out of range, and contacts, on both kinds)
+            CHECK(walls.out_of_range > 10);
+            CHECK(balls.in_range > 100);
+            CHECK(walls.in_range > 10);
+        }
+}

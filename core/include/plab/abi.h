@@ -19,15 +19,13 @@
  * What each version changed: docs/abi-changes.md.
  *
  * Contact models are called once per *batch* of contacts over host-owned
- * structure-of-arrays data (plab_contact_batch). A batch may hold only
- * active rows: the host packs the rows in contact for ball–ball contacts of
- * models that accumulate no body fields (or, in the force stage, of a model
- * with a rates stage, whose force-stage sums are not kept: its accumulate
- * columns then point at scratch), and then itself resets the history
- * of a contact that leaves the activity range to the declared defaults (what
- * the C++ adapter's batch loop does with an inactive row). A model must not
- * rely on seeing its inactive rows. Passes are called once per
- * cycle phase over all bodies (plab_pass_view).
+ * structure-of-arrays data (plab_contact_batch). The host packs every
+ * batch with the rows in contact only (ball–ball and ball–wall, either
+ * stage) and the inputs the model declares (`io`), and itself resets the
+ * history of a contact out of the activity range to the declared defaults.
+ * A model must not rely on seeing an inactive row (a test harness may still
+ * pass one: the C++ adapter forgets its history). Passes are called once
+ * per cycle phase over all bodies (plab_pass_view).
  *
  * Most authors never touch this file: contact_model.hpp and pass.hpp generate
  * the tables and the batch loop from a C++ class.
@@ -203,8 +201,8 @@ typedef struct plab_contact_batch {
      * already turned into their current contact plane */
     double* history;
 
-    /* outputs, one entry per contact; the host zeroes them first in the rows
-     * that are active, and ignores whatever an inactive row holds */
+    /* outputs, one entry per contact, zeroed by the host first (dt_limit:
+     * +inf); an inactive row's (a harness's) are ignored */
     double* force;        /* 3*count, on end 2, N */
     double* moment1;      /* 3*count, pure moment on end 1 (beyond r x F), N m */
     double* moment2;      /* 3*count, pure moment on end 2, N m */

@@ -21,15 +21,15 @@ struct ContactSet {
     bool with_wall = false;
     std::vector<std::int32_t> end1, end2;
     std::vector<double> history;
-    // geometry (inputs of the batch). Ball–ball rows of models that take the
-    // dense path (force_sweep) keep active, gap, normal and point up to date
+    // geometry (inputs of the batch). Ball–ball rows packed with their
+    // geometry (ForcePipeline::packer_of) keep active, gap, normal and point up to date
     // for every reader; their distance, rel_velocity, rel_angular_velocity,
     // strain, slip, dashpot and break_energy columns are not written (the
     // model gets them packed, forces/packed_batch.hpp) and hold stale values. Those
     // of a PLAB_MODEL_FORCE_AT_CENTRES model (centre_force_batch.cpp) write
     // back force and dt_limit only: moments, stiffness and energies stay
-    // zero. A `packed` set (ForcePipeline::packs_balls: dense, and no model of the
-    // world runs a rates stage over the full columns) does not even allocate distance, rel_velocity,
+    // zero. A `packed` set (ForcePipeline::packs_balls: so packed, and no
+    // rates stage needs all rows' geometry first) does not even allocate distance, rel_velocity,
     // rel_angular_velocity, radius1, radius2, mass1, mass2, eff_mass,
     // eff_radius, strain, slip, dashpot and break_energy, nor gap, normal
     // and point: readers recompute those three from the positions

@@ -3,7 +3,7 @@
 // The dense batch of forces/packed_batch.hpp without what such a model never uses:
 // no spin terms in the relative velocity, no moments r x F, no stiffness or
 // energy columns cleared or read back. The rows reach the model through the
-// same DenseBatch, bind_rows() and call_model_dense(); the force sums go to
+// same DenseBatch, bind_rows() and call_model(); the force sums go to
 // the chunks' partials in row order, as unpack_rows() does, so results do
 // not depend on the thread count.
 #include "forces/packed_batch.hpp"

@@ -45,10 +45,10 @@ void ForcePipeline::run(const std::function<void(std::uint32_t)>& run_passes) {
         // the EOS) still run before the forces, on this cycle's contacts
         mark_ball_rows_in_range();  // (it lists the passes' contacts too)
         run_passes(PLAB_PHASE_RATES_DONE);
-        for (std::uint32_t si = 0; si < in_.sets.size(); ++si) force_sweep(si, !in_.sets[si]->with_wall);
+        for (std::uint32_t si = 0; si < in_.sets.size(); ++si) force_sweep(si);
         in_range_marked_ = false;
     } else if (swept_) {
-        for (std::uint32_t si = 0; si < in_.sets.size(); ++si) force_sweep(si, !in_.sets[si]->with_wall);
+        for (std::uint32_t si = 0; si < in_.sets.size(); ++si) force_sweep(si);
         if (!in_.passes.empty()) in_.pass_contacts.list_active(in_.sets);  // the sweeps set the active flags
     } else {
         if (!in_.passes.empty()) in_.pass_contacts.list_active(in_.sets);
@@ -67,9 +67,9 @@ void ForcePipeline::forget_rows() {
     packed.clear_limits(in_.sets.size());
 }
 
-// A set is packed when force_sweep() takes the dense path for it: no rates
-// stage runs over full columns (force_pass(): swept_), and its model
-// accumulates nothing or only sums of a rates stage, which is skipped.
+// A ball–ball set keeps no geometry columns (ContactSet::packed) when its
+// rows are packed with their geometry (packer_of) and no rates stage needs
+// every row's geometry before the forces (run(): swept_).
 bool ForcePipeline::packs_balls(const ModelInstance& inst) const {
     for (const auto& other : in_.instances)
         if (other->desc->rates_stage && rates_stage_needed(*other)) return false;
@@ -98,39 +98,20 @@ void clear_outputs(ContactSet& s, std::size_t o, std::size_t m) {
 }
 } // namespace
 
-// Calls the model once on rows [o, o + m) of a set, the tangential history
-// of its active rows first turned into their contact planes; returns its
+// Calls the model once on the active rows of [o, o + m) of a set whose
+// geometry is in its columns, packed (forces/table_batch.cpp); returns its
 // status. `clear`: zero the outputs of every row first (the rates stage
 // writes some that the force stage must not see); otherwise the geometry
 // zeroed those of the active rows, which are the only ones a model writes.
-int ForcePipeline::call_model(ModelInstance& inst, ContactSet& s, std::size_t o, std::size_t m, std::uint32_t stage,
-                              const ReadFields& fields, bool clear) {
+int ForcePipeline::call_on_table(ModelInstance& inst, ContactSet& s, std::size_t o, std::size_t m, std::uint32_t stage,
+                                 const ReadFields& fields, bool clear) {
     if (clear) clear_outputs(s, o, m);  // here rather than up front: the rows stay in cache for the model
-    const std::size_t stride = std::size_t(inst.stride);
-    turn_tangential_history(*inst.desc, s.history.data() + o * stride, stride, s.normal.data() + 3 * o,
-                            s.active.data() + o, m);
-    // pointers into the accumulation columns, on the stack: no allocation in the cycle
-    constexpr std::size_t kMaxAccumulated = 16;
-    double* a1[kMaxAccumulated];
-    double* a2[kMaxAccumulated];
-    if (s.acc1.size() > kMaxAccumulated) return 3;
-    for (std::size_t f = 0; f < s.acc1.size(); ++f) {
-        a1[f] = s.acc1[f].data() + o;
-        a2[f] = s.acc2[f].data() + o;
-    }
-    plab_contact_batch batch{sizeof(plab_contact_batch)};
-    batch.dim = uint32_t(in_.dim);
-    batch.count = uint32_t(m);
-    batch.end2_is_wall = s.with_wall;
-    batch.history_stride = uint32_t(inst.stride);
-    batch.dt = in_.last_dt;
-    bind_rows(batch, s, o, s.history.data() + o * inst.stride);
-    batch.body_fields = fields.cols;
-    batch.body_fields_at_default = fields.at_default;
-    batch.accumulate1 = a1;
-    batch.accumulate2 = a2;
-    batch.stage = stage;
-    return inst.desc->compute(inst.state, inst.props.data(), &batch);
+    DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
+    pack_table_rows(inst, s, o, o + m, d);
+    const BatchCall call{stage, s.with_wall};
+    const int status = call_model(inst, d, in_.dim, in_.last_dt, fields, call);
+    unpack_table_rows(inst, s, d, stage == PLAB_STAGE_RATES || !inst.desc->rates_stage);
+    return status;
 }
 
 void ForcePipeline::compute(ModelInstance& inst, ContactSet& s, std::uint32_t stage) {
@@ -143,7 +124,7 @@ void ForcePipeline::compute(ModelInstance& inst, ContactSet& s, std::uint32_t st
 #pragma omp parallel for schedule(static) reduction(| : failed) if (n >= in_.parallel_min)
     for (std::size_t b = 0; b < n_batches; ++b) {
         const std::size_t o = b * kContactBatch, m = std::min(kContactBatch, n - o);
-        if (call_model(inst, s, o, m, stage, fields, true) != 0) failed = 1;
+        if (call_on_table(inst, s, o, m, stage, fields, true) != 0) failed = 1;
     }
     if (failed) model_failed(inst);
     if (inst.desc->persist_slot >= 0) record_breaks(inst, s);
@@ -154,31 +135,25 @@ void ForcePipeline::model_failed(const ModelInstance& inst) const {
                    std::to_string(in_.step_count));
 }
 
-// The force pass of one set in a single sweep over its chunks (reduction/chunked_sums.hpp),
-// batch by batch: geometry (ball–ball sets; a wall set has it done before,
-// because resolve_wall_features needs a ball's rows together), the model,
-// and the rows' forces added to the chunk's partial sums while the batch is
-// in cache. Batches and chunks are fixed row ranges, so every sum is
-// thread-count free.
-void ForcePipeline::force_sweep(std::uint32_t si, bool with_geometry) {
+// The force pass of one set in a single sweep over its chunks
+// (reduction/chunked_sums.hpp), batch by batch (force_batch), each batch's
+// forces added to its chunk's partial sums while it is in cache. Batches
+// and chunks are fixed row ranges, so every sum is thread-count free.
+void ForcePipeline::force_sweep(std::uint32_t si) {
     ContactSet& s = *in_.sets[si];
     ModelInstance& inst = *in_.instances[si / 2];
     const std::size_t n = s.size();
     s.batch_energy.assign(kBatchEnergies * ((n + kContactBatch - 1) / kContactBatch), 0.0);
     if (n == 0) return;
     const ReadFields fields = read_fields(inst);
-    // ball–ball rows go to the model packed (forces/packed_batch.hpp), unless it
-    // accumulates body fields in this stage (those sums walk the full
-    // columns, reduce()); a rates-stage model's force-stage sums are not kept
-    const bool dense = with_geometry && (inst.fields_accumulated.empty() || inst.desc->rates_stage);
-    const bool at_centres = (inst.desc->flags & PLAB_MODEL_FORCE_AT_CENTRES) != 0;
+    const Packer packer = packer_of(inst, s);
     const std::uint32_t c0 = reduction_.chunks.first_chunk(si), c1 = reduction_.chunks.end_chunk(si);
-    if (dense && at_centres && inst.uses(PLAB_IO_DT_LIMIT))
+    if (packer == Packer::centre_pair && inst.uses(PLAB_IO_DT_LIMIT))
         packed[si].limits.assign((n + kContactBatch - 1) / kContactBatch, BatchLimit{kInf, 0});
     // a still table (StillInstances) whose rows mark_ball_rows_in_range()
     // tested: nothing to pack, only its chunks' partial sums to clear
-    const bool still = dense && at_centres && in_range_marked_ && si < in_range_.size() && in_range_[si].listed &&
-                       still_.centre_table_still(si, s, in_.instances);
+    const bool still = packer == Packer::centre_pair && in_range_marked_ && si < in_range_.size() &&
+                       in_range_[si].listed && still_.centre_table_still(si, s, in_.instances);
     if (still) hold_still(s);
     else s.forces_zero = false;
     int failed = 0;
@@ -187,32 +162,54 @@ void ForcePipeline::force_sweep(std::uint32_t si, bool with_geometry) {
     for (std::uint32_t c = c0; c < c1; ++c) {
         Chunk& ch = reduction_.chunks.chunk(c);
         reduction_.chunks.clear(ch, in_.dim);
-        ch.forces_only = dense && at_centres;
+        ch.forces_only = packer == Packer::centre_pair;
         if (still) continue;
-        for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch) {
-            const std::size_t m = std::min(kContactBatch, ch.end - o);
-            if (dense && at_centres) {  // SPH: no spin, moments, stiffness or energies
-                DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
-                exceeded |= pack_centre_rows(inst, si, o, o + m, d);
-                if (call_model_dense(inst, d, in_.dim, in_.last_dt, fields) != 0) failed = 1;
-                unpack_centre_rows(si, inst, d, o, ch);
-                continue;
-            }
-            if (dense) {
-                DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
-                exceeded |= pack_ball_rows(inst, si, o, o + m, d);
-                if (call_model_dense(inst, d, in_.dim, in_.last_dt, fields) != 0) failed = 1;
-                unpack_rows(si, inst, d, o, ch);
-                continue;
-            }
-            if (with_geometry) exceeded |= contact_geometry(in_.bodies, in_.walls, inst, s, o, o + m);
-            if (call_model(inst, s, o, m, PLAB_STAGE_FORCES, fields, false) != 0) failed = 1;
-            reduction_.scatter_rows(si, o, o + m, ch);
-        }
+        for (std::size_t o = ch.begin; o < ch.end; o += kContactBatch)
+            failed |= force_batch(packer, inst, si, o, std::min(kContactBatch, ch.end - o), fields, ch, exceeded) != 0;
     }
-    if (with_geometry) s.overlap_exceeded = exceeded;
+    if (!s.with_wall) s.overlap_exceeded = exceeded;  // (a wall table's: geometry())
     if (failed) model_failed(inst);
     if (inst.desc->persist_slot >= 0) record_breaks(inst, s);
+}
+
+// How a table's rows reach its model. Ball–ball rows are packed with their
+// geometry, by the model's kind: the pair's full kinematics, or only what a
+// force between centres needs (PLAB_MODEL_FORCE_AT_CENTRES: no spin,
+// moments, stiffness or energies). Ball–wall rows, and those of a model
+// that sums body fields in the force stage (the sums go to the columns,
+// Reduction::reduce), are packed from the geometry in the columns; a
+// rates-stage model's force-stage sums are not kept, so it packs as any.
+ForcePipeline::Packer ForcePipeline::packer_of(const ModelInstance& inst, const ContactSet& s) const {
+    if (s.with_wall || !(inst.fields_accumulated.empty() || inst.desc->rates_stage)) return Packer::table;
+    return (inst.desc->flags & PLAB_MODEL_FORCE_AT_CENTRES) ? Packer::centre_pair : Packer::ball_pair;
+}
+
+// One batch of rows [o, o + m) of set si through the pipeline: its geometry
+// and packing, the model, and the forces into the chunk's partial sums.
+// Returns the model's status; `exceeded` set when a row overlaps beyond
+// max_overlap.
+int ForcePipeline::force_batch(Packer packer, ModelInstance& inst, std::uint32_t si, std::size_t o, std::size_t m,
+                               const ReadFields& fields, const Chunk& ch, bool& exceeded) {
+    ContactSet& s = *in_.sets[si];
+    DenseBatch& d = DenseBatch::for_this_thread(std::size_t(inst.stride));
+    switch (packer) {
+    case Packer::ball_pair: exceeded |= pack_ball_rows(inst, si, o, o + m, d); break;
+    case Packer::centre_pair: exceeded |= pack_centre_rows(inst, si, o, o + m, d); break;
+    case Packer::table:
+        if (!s.with_wall) exceeded |= contact_geometry(in_.bodies, in_.walls, inst, s, o, o + m);
+        pack_table_rows(inst, s, o, o + m, d);
+        break;
+    }
+    const int status = call_model(inst, d, in_.dim, in_.last_dt, fields, {PLAB_STAGE_FORCES, s.with_wall});
+    switch (packer) {
+    case Packer::ball_pair: unpack_rows(si, inst, d, o, ch); break;
+    case Packer::centre_pair: unpack_centre_rows(si, inst, d, o, ch); break;
+    case Packer::table:
+        unpack_table_rows(inst, s, d, !inst.desc->rates_stage);
+        reduction_.scatter_rows(si, o, o + m, ch);
+        break;
+    }
+    return status;
 }
 
 // A model marks a bond it just broke with -mode in its persist slot; the

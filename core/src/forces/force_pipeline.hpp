@@ -1,9 +1,10 @@
 // The force pipeline, the force–displacement phase of a cycle: the contact
 // geometry of every candidate row, computed once by the host; each model
-// called once per batch of rows, packed (active rows only, the columns the
-// model declares) or over its full columns; the rates stage and the passes
-// that turn its sums into states; the rows' forces scattered into the
-// reduction's partial sums; the bonds that broke.
+// called once per batch of rows, every batch packed the same way (the
+// active rows only, the inputs and outputs the model declares), by one of
+// three packers its kind selects (force_batch); the rates stage and the
+// passes that turn its sums into states; the rows' forces scattered into
+// the reduction's partial sums; the bonds that broke.
 #pragma once
 
 #include <plab_host/bodies.hpp>
@@ -90,12 +91,17 @@ public:
 
 private:
     void geometry(ModelInstance& inst, ContactSet& set);
-    void force_sweep(std::uint32_t set_index, bool with_geometry);
+    // How a table's rows reach its model (packer_of).
+    enum class Packer : std::uint8_t { ball_pair, centre_pair, table };
+    Packer packer_of(const ModelInstance& inst, const ContactSet& set) const;
+    void force_sweep(std::uint32_t set_index);
+    int force_batch(Packer packer, ModelInstance& inst, std::uint32_t set_index, std::size_t o, std::size_t m,
+                    const ReadFields& fields, const Chunk& chunk, bool& exceeded);
     void rates_stage(const std::function<void(std::uint32_t)>& run_passes);
     bool rates_stage_needed(const ModelInstance& inst) const;
     void compute(ModelInstance& inst, ContactSet& set, std::uint32_t stage);
-    int call_model(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
-                   const ReadFields& fields, bool clear);
+    int call_on_table(ModelInstance& inst, ContactSet& set, std::size_t o, std::size_t m, std::uint32_t stage,
+                      const ReadFields& fields, bool clear);
     [[noreturn]] void model_failed(const ModelInstance& inst) const;
     void record_breaks(ModelInstance& inst, ContactSet& set);
     void find_fields_at_default();

@@ -197,27 +197,29 @@ bool ForcePipeline::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, 
 
 
 
-int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const ReadFields& fields) {
+int call_model(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const ReadFields& fields,
+                     BatchCall call) {
     if (d.count == 0) return 0;
-    // (every packed row is active; both packers leave the normals in d)
+    // (every packed row is active; the packers leave the normals in d)
     turn_tangential_history(*inst.desc, d.history.data(), std::size_t(inst.stride), d.normal, nullptr, d.count);
     plab_contact_batch batch{sizeof(plab_contact_batch)};
     batch.dim = uint32_t(dim);
     batch.count = d.count;
-    batch.end2_is_wall = 0;
+    batch.end2_is_wall = call.to_wall;
     batch.history_stride = uint32_t(inst.stride);
     batch.dt = dt;
     bind_rows(batch, d, 0, d.history.data());
     batch.distance = d.distances;  // (where the packer left them)
     batch.body_fields = fields.cols;
     batch.body_fields_at_default = fields.at_default;
-    // models that accumulate fields take the full-column path, except in
-    // the force stage of a rates-stage model, whose sums are not kept
-    const bool discard = !inst.fields_accumulated.empty();
-    if (inst.fields_accumulated.size() > DenseBatch::kMaxDiscarded) return 3;
-    batch.accumulate1 = discard ? d.discard_columns : nullptr;
-    batch.accumulate2 = discard ? d.discard_columns : nullptr;
-    batch.stage = PLAB_STAGE_FORCES;
+    // the sums start from zero where they are kept: not in the force stage
+    // of a rates-stage model (abi.h, rates_stage), which may write them still
+    const std::size_t n_fields = inst.fields_accumulated.size();
+    const bool kept = call.stage == PLAB_STAGE_RATES || !inst.desc->rates_stage;
+    if (n_fields) d.accumulated.bind(n_fields, kept ? d.count : 0);
+    batch.accumulate1 = n_fields ? d.accumulated.end1 : nullptr;
+    batch.accumulate2 = n_fields ? d.accumulated.end2 : nullptr;
+    batch.stage = call.stage;
     return inst.desc->compute(inst.state, inst.props.data(), &batch);
 }
 

@@ -18,6 +18,26 @@
 
 namespace plab {
 
+// Where a packed batch's rows add to the body fields their model
+// accumulates: per field, a column for end 1 and one for end 2, zeroed for
+// the packed rows by bind().
+struct AccumulatedColumns {
+    static constexpr std::size_t kMax = ReadFields::kMax;  // (World::add_instance refuses more)
+    std::vector<double> values;              // 2 x fields x kContactBatch
+    double* end1[kMax];
+    double* end2[kMax];
+    // The columns of n_fields fields, rows [0, n) zeroed.
+    void bind(std::size_t n_fields, std::size_t n) {
+        if (values.size() < 2 * n_fields * kContactBatch) values.resize(2 * n_fields * kContactBatch);
+        for (std::size_t f = 0; f < n_fields; ++f) {
+            end1[f] = values.data() + 2 * f * kContactBatch;
+            end2[f] = end1[f] + kContactBatch;
+            std::fill_n(end1[f], n, 0.0);
+            std::fill_n(end2[f], n, 0.0);
+        }
+    }
+};
+
 struct DenseBatch {
     static constexpr std::size_t N = kContactBatch;
     std::uint32_t count = 0;  // active rows packed
@@ -40,16 +60,10 @@ struct DenseBatch {
     const std::uint32_t* rows = row;
     const double* distances = distance;
 
-    // where the force stage of a rates-stage model accumulates: not kept
-    // (abi.h, rates_stage), but the model may write there
-    static constexpr std::size_t kMaxDiscarded = 16;
-    double discarded[N];
-    double* discard_columns[kMaxDiscarded];
+    // the body-field sums of the packed rows (accumulate1/2, abi.h)
+    AccumulatedColumns accumulated;
 
-    DenseBatch() {
-        std::fill_n(active, N, std::uint8_t(1));
-        std::fill_n(discard_columns, kMaxDiscarded, &discarded[0]);
-    }
+    DenseBatch() { std::fill_n(active, N, std::uint8_t(1)); }
     // The optional inputs (PLAB_IO_*) a model does not read are not packed:
     // their columns hold NaN instead, so a law that reads one anyway gives a
     // non-finite force, which the host reports by model name. `poisoned`
@@ -182,10 +196,29 @@ void bind_rows(plab_contact_batch& b, Columns& c, std::size_t o, double* history
     b.break_energy = std::data(c.break_energy) + o;
 }
 
+// What a model call is for: its stage (PLAB_STAGE_*) and whether end 2 of
+// the rows is a wall facet.
+struct BatchCall {
+    std::uint32_t stage = PLAB_STAGE_FORCES;
+    bool to_wall = false;
+};
+
 // Calls the model once on the packed rows, their tangential history first
 // turned into their contact planes (forces/tangential_history.hpp); returns
 // its status.
-int call_model_dense(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const ReadFields& fields);
+int call_model(const ModelInstance& inst, DenseBatch& d, int dim, double dt, const ReadFields& fields,
+                     BatchCall call = {});
+
+// The active rows of [begin, end) of a table whose geometry is in its
+// columns (ball–wall rows; ball–ball rows of a model that sums body fields
+// in the force stage; the rates stage), packed into d: the geometry and the
+// inputs the model declares, its history, its outputs zeroed
+// (forces/table_batch.cpp). The history of the rows out of range goes back
+// to its declared defaults (a separated contact is forgotten).
+void pack_table_rows(const ModelInstance& inst, ContactSet& s, std::size_t begin, std::size_t end, DenseBatch& d);
+// Back to the table's columns: history, the outputs (the neutral value of
+// one the model does not declare) and, where `sums`, the body-field sums.
+void unpack_table_rows(const ModelInstance& inst, ContactSet& s, const DenseBatch& d, bool sums);
 
 // The loop over a batch's rows in range that both packers share (d.rows and
 // d.distances, as the range test listed them): each row's ends, radii and

@@ -62,6 +62,9 @@ int World::add_instance(const std::string& model, std::vector<double> props) {
     if (d->fields_read_count > ReadFields::kMax)
         throw PluginError("contact model '" + model + "' reads " + std::to_string(d->fields_read_count) +
                           " body fields; plab passes at most " + std::to_string(ReadFields::kMax));
+    if (d->fields_accumulated_count > ReadFields::kMax)
+        throw PluginError("contact model '" + model + "' accumulates " + std::to_string(d->fields_accumulated_count) +
+                          " body fields; plab takes at most " + std::to_string(ReadFields::kMax));
     for (uint32_t f = 0; f < d->fields_read_count; ++f)
         inst->fields_read.push_back(register_field(d->fields_read[f].name, d->fields_read[f].default_value, d->fields_read[f].unit));
     for (uint32_t f = 0; f < d->fields_accumulated_count; ++f)
