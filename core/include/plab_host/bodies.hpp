@@ -55,6 +55,10 @@ struct Bodies {
     static double inertia_of(int dim, double radius, double mass);
 
     BodyId add(const BallSpec& s);
+    // Keeps the bodies whose `gone` flag is 0, in their order (ids stay);
+    // returns each old index's new one, -1 for a body removed. World's
+    // remove_bodies() renumbers what refers to body indices.
+    std::vector<std::int32_t> remove(const std::vector<std::uint8_t>& gone);
     bool has_applied_loads() const { return !applied_force.empty(); }
     void enable_applied_loads();  // zero loads for every body, from here on kept
     // Every column's block down to its size: add() grows them by doubling,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,8 @@ public:
     double default_value(int f) const { return defaults_[std::size_t(f)]; }
     // Every column at `rows` bodies; bodies added since take the default.
     void resize(std::size_t rows);
+    // Every column down to the rows whose new index (Bodies::remove) is not -1.
+    void keep_rows(const std::vector<std::int32_t>& new_index);
     // All columns, for the last-good snapshot and checkpoints.
     const std::vector<std::vector<double>>& columns() const { return columns_; }
     void set_columns(const std::vector<std::vector<double>>& columns) { columns_ = columns; }  // (as many fields)

@@ -150,6 +150,12 @@ public:
 // nominal contact per assigned group pair (before any contact exists).
 // Adds a clump and its pebbles to the world (Clumps::add); returns its index.
 std::size_t add_clump(World& w, const ClumpSpec& spec);
+// Removes the balls flagged in `gone` (one flag per body; a clump's pebble
+// is refused: std::invalid_argument), keeping the others' order, ids and
+// contact history; returns how many went. The next step rebuilds the
+// contact lists (World::mark_dirty). Balls are added with Bodies::add and
+// mark_dirty().
+std::size_t remove_bodies(World& w, const std::vector<std::uint8_t>& gone);
 
 StableStep stable_timestep(const World& w);
 StableStep nominal_timestep(const World& w);

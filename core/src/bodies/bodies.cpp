@@ -53,4 +53,31 @@ BodyId Bodies::add(const BallSpec& s) {
     return new_id;
 }
 
+namespace {
+// Column c down to the rows whose new index is not -1, in order.
+template <class T> void keep_rows(std::vector<T>& c, const std::vector<std::int32_t>& new_index) {
+    if (c.empty()) return;  // (a column not kept: applied loads, clump)
+    for (std::size_t i = 0; i < new_index.size(); ++i)
+        if (new_index[i] >= 0) c[std::size_t(new_index[i])] = c[i];
+    std::size_t kept = 0;
+    for (std::int32_t n : new_index) kept += n >= 0;
+    c.resize(kept);
+}
+} // namespace
+
+std::vector<std::int32_t> Bodies::remove(const std::vector<std::uint8_t>& gone) {
+    std::vector<std::int32_t> new_index(size(), -1);
+    std::int32_t next = 0;
+    for (std::size_t i = 0; i < size(); ++i)
+        if (!gone[i]) new_index[i] = next++;
+    for (auto* v : {&position, &velocity, &angular_velocity, &force, &moment, &applied_force, &applied_moment})
+        keep_rows(*v, new_index);
+    for (auto* v : {&radius, &mass, &inertia, &local_damping, &viscous_damping}) keep_rows(*v, new_index);
+    keep_rows(id, new_index);
+    keep_rows(group, new_index);
+    keep_rows(fixity, new_index);
+    keep_rows(clump, new_index);
+    return new_index;
+}
+
 } // namespace plab

@@ -25,4 +25,13 @@ void BodyFields::resize(std::size_t rows) {
     for (std::size_t f = 0; f < columns_.size(); ++f) columns_[f].resize(rows, defaults_[f]);
 }
 
+void BodyFields::keep_rows(const std::vector<std::int32_t>& new_index) {
+    for (auto& c : columns_) {
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < new_index.size() && i < c.size(); ++i)
+            if (new_index[i] >= 0) c[std::size_t(new_index[i])] = c[i], ++kept;
+        c.resize(kept);
+    }
+}
+
 } // namespace plab

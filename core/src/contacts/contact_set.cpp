@@ -1,5 +1,7 @@
 #include "contacts/contact_set.hpp"
 
+#include <algorithm>
+
 #include "common/buffers.hpp"
 
 namespace plab {
@@ -59,6 +61,32 @@ void ContactSet::release_columns() {
     release(batch_energy);
     for (auto* acc : {&acc1, &acc2})
         for (auto& a : *acc) release(a);
+}
+
+void renumber_ends(ContactSet& s, const std::vector<std::int32_t>& new_index, std::size_t stride) {
+    const bool sides = s.with_wall && s.normal.size() == 3 * s.size() && s.interior.size() == s.size();
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        const std::int32_t i = new_index[std::size_t(s.end1[k])];
+        const std::int32_t j = s.with_wall ? s.end2[k] : new_index[std::size_t(s.end2[k])];
+        if (i < 0 || j < 0) continue;
+        s.end1[kept] = i;
+        s.end2[kept] = j;
+        std::copy_n(s.history.begin() + k * stride, stride, s.history.begin() + kept * stride);
+        if (sides) {
+            std::copy_n(s.normal.begin() + 3 * k, 3, s.normal.begin() + 3 * kept);
+            s.interior[kept] = s.interior[k];
+        }
+        ++kept;
+    }
+    s.end1.resize(kept);
+    s.end2.resize(kept);
+    s.history.resize(kept * stride);
+    if (sides) {
+        s.normal.resize(3 * kept);
+        s.interior.resize(kept);
+    }
+    s.release_columns();
 }
 
 } // namespace plab

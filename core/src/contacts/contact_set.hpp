@@ -65,6 +65,12 @@ struct ContactSet {
     bool keeps(std::uint32_t io_bit) const;  // PLAB_IO_MOMENTS, _STIFFNESS_ROTATIONAL, _DT_LIMIT, or 0 for k_t
 };
 
+// The rows of a table whose ends both stay after Bodies::remove (a wall
+// row's ball), their ends renumbered, with their history (and a wall row's
+// side); every other column is released, for the rebuild that must follow
+// (World's remove_bodies marks the world dirty).
+void renumber_ends(ContactSet& s, const std::vector<std::int32_t>& new_index, std::size_t history_stride);
+
 // Row k's value of an output column a table may not keep (ContactSet::keeps):
 // the neutral value where it is not kept.
 inline double k_t_at(const ContactSet& s, std::size_t k) { return s.k_t.empty() ? 0.0 : s.k_t[k]; }

@@ -9,6 +9,7 @@
 #include "forces/geometry.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace plab {
 
@@ -35,6 +36,25 @@ std::size_t add_clump(World& w, const ClumpSpec& spec) {
     const std::size_t c = w.clumps.add(spec, w.bodies);
     w.mark_dirty();
     return c;
+}
+std::size_t remove_bodies(World& w, const std::vector<std::uint8_t>& gone) {
+    if (gone.size() != w.bodies.size()) throw std::invalid_argument("remove_bodies: one flag per body");
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < gone.size(); ++i) {
+        if (!gone[i]) continue;
+        if (!w.bodies.clump.empty() && w.bodies.clump[i] >= 0)
+            throw std::invalid_argument("remove_bodies: ball " + std::to_string(w.bodies.id[i]) +
+                                        " is a pebble of a clump; a clump leaves whole or not at all");
+        ++n;
+    }
+    if (n == 0) return 0;
+    const std::vector<std::int32_t> new_index = w.bodies.remove(gone);
+    w.fields.keep_rows(new_index);
+    for (auto& inst : w.cycle->instances)
+        for (ContactSet* s : {&inst->balls, &inst->walls}) renumber_ends(*s, new_index, std::size_t(inst->stride));
+    for (auto& p : w.clumps.pebble_body) p = new_index[std::size_t(p)];
+    w.mark_dirty();
+    return n;
 }
 void World::set_skin(double skin) { cycle->neighbours.skin = skin; }
 void World::step() { cycle->step(); }
