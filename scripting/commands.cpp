@@ -233,7 +233,7 @@ void Simulation::load_histories(const Node& n) {
     rec.expect_array();
     for (std::size_t i = 0; i < rec.size(); ++i) {
         const Node h = rec.at(i);
-        h.allow_keys({"name", "quantity", "id", "group", "wall", "point", "radius", "expression", "with"});
+        h.allow_keys({"name", "quantity", "id", "group", "wall", "inlet", "outlet", "point", "radius", "expression", "with"});
         HistoryColumn col;
         if (h.has("expression")) {
             if (h.has("quantity")) h.fail("a column has a \"quantity\" or an \"expression\", not both");
@@ -245,7 +245,8 @@ void Simulation::load_histories(const Node& n) {
             col.derive = [expr](const std::vector<double>& row) { return (*expr)(row); };
         } else {
             col.name = h.string_or("name", h.at("quantity").string());
-            col.sample = quantity(h, *world_);
+            col.sample = flows_.quantity(h);
+            if (!col.sample) col.sample = quantity(h, *world_);
             col.unit = quantity_unit(h.at("quantity").string(), *world_);
         }
         history_cols_.push_back(std::move(col));
@@ -618,6 +619,7 @@ void Simulation::cycle(long n) {
     } unset{w};
     w.contact_forces_wanted = [&] { return k + 1 >= n || stop_signal() != 0 || due_after_step().any(); };
     const auto one_step = [&] {
+        if (!flows_.empty()) flows_.before_step(w);
         if (!servos_.empty()) drive_servos(servos_, w);
         w.step();
         ++run_.steps;

@@ -2,6 +2,7 @@
 
 #include "clump_generator.hpp"
 
+#include "ball_fill.hpp"
 #include "size_distribution.hpp"
 
 #include <plab_host/plugins.hpp>
@@ -16,12 +17,6 @@
 namespace plab {
 
 namespace {
-
-struct Material {
-    double radius_lo = 0, radius_hi = 0, density = 0, damping = 0, viscous = 0;
-    int group = 0;
-    std::uint8_t fixity = 0;
-};
 
 // `mass` (ball, lattice) gives each ball's mass directly, e.g. an SPH
 // particle's rho0 dp^2 (2D, per unit thickness) or rho0 dp^3 (3D); it is
@@ -47,8 +42,9 @@ void check_mass(const Node& n, int dim, double radius, double density) {
     n.at(n.has("mass") ? "mass" : radius_at_fault ? "radius" : "density").fail(s.str());
 }
 
-Material read_material(const Node& n, World& w, bool radius_range, bool allow_mass = false,
-                       const SizeDistribution* sizes = nullptr) {
+} // namespace
+
+Material read_material(const Node& n, World& w, bool radius_range, bool allow_mass, const SizeDistribution* sizes) {
     Material m;
     const Node r = n.at("radius");
     if (sizes) {
@@ -80,8 +76,7 @@ Box read_box(const Node& n, int dim) {
     return b;
 }
 
-void add(World& w, const Material& m, const Vec& p, double radius, const Vec& v = Vec::Zero(),
-         const Vec& spin = Vec::Zero()) {
+void add(World& w, const Material& m, const Vec& p, double radius, const Vec& v, const Vec& spin) {
     BallSpec s;
     s.position = p;
     s.velocity = v;
@@ -94,6 +89,8 @@ void add(World& w, const Material& m, const Vec& p, double radius, const Vec& v 
     s.viscous_damping = m.viscous;
     w.bodies.add(s);
 }
+
+namespace {
 
 void single_ball(const Node& n, World& w) {
     n.allow_keys({"type", "group", "position", "radius", "density", "mass", "velocity", "angular_velocity", "fix",
@@ -295,53 +292,6 @@ void check_fill_possible(const Node& count_node, long count, double radius, cons
       << long(box_volume / ball_volume) << "]";
     count_node.fail(s.str());
 }
-
-// The background grid of a random fill: cells at least a diameter wide
-// (a ball's neighbours are then within one cell), and not more cells than
-// balls (tiny balls in a big box need no fine grid).
-class FillGrid {
-public:
-    FillGrid(const Box& box, int dim, double largest_radius, long count) : box_(box), dim_(dim) {
-        double volume = 1;
-        for (int c = 0; c < dim; ++c) volume *= box.hi[c] - box.lo[c];
-        cell_ = std::max(2 * largest_radius, std::pow(volume / double(count), 1.0 / dim));
-        for (int c = 0; c < dim; ++c) dims_[c] = std::max(1L, long((box.hi[c] - box.lo[c]) / cell_) + 1);
-        grid_.resize(std::size_t(dims_[0] * dims_[1] * dims_[2]));
-    }
-    // A position for a ball of radius r inside the box, from rng; false when the box is too thin for it.
-    bool draw_position(Rng& rng, double r, Vec& p) const {
-        p = Vec::Zero();
-        bool fits = true;
-        for (int c = 0; c < dim_; ++c) {
-            if (box_.hi[c] - box_.lo[c] < 2 * r) fits = false;
-            p[c] = rng.uniform(box_.lo[c] + r, box_.hi[c] - r);
-        }
-        return fits;
-    }
-    // Places the ball when it overlaps none placed before.
-    bool place(const Vec& p, double r) {
-        const long cx = cell_of(p, 0), cy = cell_of(p, 1), cz = dim_ == 3 ? cell_of(p, 2) : 0;
-        for (long z = std::max(0L, cz - 1); z <= std::min(dims_[2] - 1, cz + 1); ++z)
-            for (long y = std::max(0L, cy - 1); y <= std::min(dims_[1] - 1, cy + 1); ++y)
-                for (long x = std::max(0L, cx - 1); x <= std::min(dims_[0] - 1, cx + 1); ++x)
-                    for (int q : grid_[std::size_t((z * dims_[1] + y) * dims_[0] + x)])
-                        if ((placed[std::size_t(q)] - p).norm() < radii[std::size_t(q)] + r) return false;
-        grid_[std::size_t((cz * dims_[1] + cy) * dims_[0] + cx)].push_back(int(placed.size()));
-        placed.push_back(p);
-        radii.push_back(r);
-        return true;
-    }
-    std::vector<Vec> placed;
-    std::vector<double> radii;
-
-private:
-    long cell_of(const Vec& p, int c) const { return std::clamp(long((p[c] - box_.lo[c]) / cell_), 0L, dims_[c] - 1); }
-    Box box_;
-    int dim_;
-    double cell_ = 0;
-    std::array<long, 3> dims_{1, 1, 1};
-    std::vector<std::vector<int>> grid_;
-};
 
 // A radius range [min, max]: each attempt draws its own radius, uniform in
 // the range (so a dense fill keeps more small balls than the range holds).

@@ -34,6 +34,9 @@ public:
         return z ^ (z >> 31);
     }
     double uniform(double a, double b) { return a + (b - a) * double(next() >> 11) * 0x1.0p-53; }
+    // (what a checkpoint keeps of it)
+    std::uint64_t state() const { return s_; }
+    void set_state(std::uint64_t s) { s_ = s; }
 
 private:
     std::uint64_t s_;

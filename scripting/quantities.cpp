@@ -32,6 +32,8 @@ const std::vector<QuantityInfo>& builtin() {
          "as ball.*", "over a group's balls (with \"group\")"},
         {"wall.force.<x|y|z>", "N", "force of the balls on a wall (with \"wall\")"},
         {"wall.moment.<x|y|z>", "N m", "their moment about the wall's centre (with \"wall\")"},
+        {"inlet.<count|mass>", "-, kg", "balls an inlet has added so far (with \"inlet\": its name)"},
+        {"outlet.<count|mass>", "-, kg", "balls an outlet has removed so far (with \"outlet\": its name)"},
         {"probe.<field>", "the field's", "kernel-weighted mean of a per-body field at a point (with point, radius, group)"},
     };
     return q;
@@ -84,6 +86,7 @@ std::string quantity_unit(const std::string& quantity, const World& w) {
     if (parts[0] == "clump" && parts.size() == 3) return vector_unit(parts[1]);
     if (parts[0] == "group" && parts.size() == 4) return vector_unit(parts[2]);
     if (parts[0] == "wall" && parts.size() == 3) return parts[1] == "force" ? "N" : "N m";
+    if ((parts[0] == "inlet" || parts[0] == "outlet") && parts.size() == 2) return parts[1] == "mass" ? "kg" : "-";
     if (parts[0] == "probe" && parts.size() == 2) {
         const int f = w.fields.index(parts[1]);
         return f < 0 || w.fields.unit(f) == "1" ? "" : w.fields.unit(f);

@@ -256,6 +256,7 @@ void Simulation::write_run_state(CheckpointWriter& out) const {
     out.f64(next_png_time_);
     out.f64(checkpoint_every_);
     out.f64(next_checkpoint_time_);
+    flows_.save(out);
     out.section("end");
 }
 
@@ -355,6 +356,8 @@ void Simulation::load_run_state(CheckpointReader& in) {
     next_png_time_ = in.f64();
     checkpoint_every_ = in.f64();
     next_checkpoint_time_ = in.f64();
+    if (in.format() >= 5) flows_.load(in);  // (format 4: no inlets or outlets)
+    else if (!flows_.empty()) in.fail("the scene has inlets or outlets, which a checkpoint of format 4 does not keep");
     in.section("end");
     in.finish();
 }

@@ -50,7 +50,7 @@ Simulation::~Simulation() = default;
 void Simulation::load(const Node& root) {
     root.allow_keys({"description", "dimension", "domain", "gravity", "plugins", "bodies", "walls", "materials",
                      "contact_models", "passes", "timestep", "skin", "histories", "output", "commands", "validation",
-                     "stability", "metrics", "variables", "limits", "servos"});
+                     "stability", "metrics", "variables", "limits", "servos", "inlets", "outlets"});
     const int dim = int(root.at("dimension").integer(2, 3));
     world_ = std::make_unique<World>(dim, host_);
     if (root.has("domain")) {
@@ -75,6 +75,8 @@ void Simulation::load(const Node& root) {
     if (root.has("bodies")) load_bodies(root.at("bodies"));
     if (root.has("walls")) load_walls(root.at("walls"));
     if (root.has("servos")) servos_ = read_servos(root.at("servos"), *world_);
+    if (root.has("inlets")) flows_.read_inlets(root.at("inlets"), *world_, scene_dir_);
+    if (root.has("outlets")) flows_.read_outlets(root.at("outlets"), *world_);
     if (root.has("materials")) materials_->load(root.at("materials"), *world_);
     if (root.has("contact_models")) load_contact_models(root.at("contact_models"));
     if (root.has("passes")) load_passes(root.at("passes"));

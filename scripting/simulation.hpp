@@ -2,6 +2,7 @@
 // The scene format is documented in docs/scene-format.md.
 #pragma once
 
+#include "body_flows.hpp"
 #include "generators.hpp"
 #include "json_reader.hpp"
 #include "pictures.hpp"
@@ -228,6 +229,7 @@ private:
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
     GeneratorLimits limits_;
     std::vector<Servo> servos_;  // scene.servos: walls driven to a target stress before each step
+    BodyFlows flows_;            // scene.inlets and scene.outlets: balls added and removed before each step
     std::vector<LatticeCells> lattices_;  // the scene's lattices, for calibrate.density
     json structures_ = json::array();     // what the lattices and calibrations did (summary.json "structures")
     void calibrate_density(const Node& cal, const std::vector<int>* sides);
