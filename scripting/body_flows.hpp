@@ -60,6 +60,7 @@ public:
     void read_inlets(const Node& n, World& w, const std::string& scene_dir);
     void read_outlets(const Node& n, World& w);
     bool empty() const { return inlets_.empty() && outlets_.empty(); }
+    bool has_inlets() const { return !inlets_.empty(); }
     // The removals and insertions due before the world's next step.
     void before_step(World& w);
     // A history column "inlet.<count|mass>" or "outlet.<count|mass>" (with

@@ -364,6 +364,10 @@ void Simulation::load_timestep(const Node& n) {
         throw InputError("scene.contact_models", e.what());
     }
     if (n.has("fixed") && n.has("fixed_fraction")) n.fail("give \"fixed\" (s) or \"fixed_fraction\" (of the stable step), not both");
+    // the stable step is that of the balls present: an inlet's come later
+    if (!n.has("fixed") && flows_.has_inlets() && w.bodies.size() == 0)
+        n.fail("a scene that starts without balls and pours them from an inlet needs \"fixed\" (s): the automatic "
+               "step, and \"fixed_fraction\", take the stable step of the balls present, and there are none");
     // a fixed step as a fraction of the nominal stable one (one contact of the
     // lightest ball of each assigned pair of groups), as LIGGGHTS users give
     // dt as a fraction of the Rayleigh time
