@@ -2,6 +2,8 @@
 // angle of repose (the angle_of_repose case).
 #include "measurement.hpp"
 
+#include "../generators.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -65,12 +67,62 @@ Measurement heap_angle(const Node& with, const World& w) {
     };
 }
 
+// The stress in a box from the contacts whose point lies in it (Love–Weber,
+// as PFC's measurement logic): sigma = -(1/V) sum_c l_c (x) f_c, tension
+// positive, with f_c the force on end 2 and l_c the branch from end 1's
+// centre to end 2's (ball–ball) or to the wall's surface (ball–wall: the
+// wall is outside the volume, which the walls then bound exactly: a
+// packing at rest between walls gives their stress). V is the box's
+// volume (2D: area x 1 m).
+Eigen::Matrix3d contact_stress_in(const World& x, const Box& box) {
+    Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+    for (std::size_t m = 0; m < x.model_count(); ++m)
+        for (const ContactTable& t : {x.model(m).balls(), x.model(m).walls()})
+            for (std::size_t k = 0; k < t.size(); ++k) {
+                if (!t.active(k)) continue;
+                const Vec c = t.point(k);
+                bool in = true;
+                for (int d = 0; d < x.dim; ++d) in &= c[d] >= box.lo[d] && c[d] <= box.hi[d];
+                if (!in) continue;
+                const Vec from = x.bodies.position[t.end1(k)];
+                const Vec l = t.with_wall() ? Vec(t.normal(k) * (t.gap(k) + t.end_radius(k, false)))
+                                            : Vec(x.bodies.position[t.end2(k)] - from);
+                sum -= l * t.force(k).transpose();
+            }
+    double volume = 1;
+    for (int d = 0; d < x.dim; ++d) volume *= box.hi[d] - box.lo[d];
+    return sum / volume;
+}
+
+// contact_stress: one component of contact_stress_in() (the symmetric part
+// for a shear component), or the pressure -trace / dim.
+Measurement contact_stress(const Node& with, const World& w) {
+    with.allow_keys({"min", "max", "component"});
+    Box box{with.at("min").vec(w.dim), with.at("max").vec(w.dim)};
+    for (int d = 0; d < w.dim; ++d)
+        if (!(box.lo[d] < box.hi[d])) with.at("max").fail("the box's max must exceed its min in every direction");
+    const Node cn = with.at("component");
+    const std::string comp = w.dim == 2 ? cn.choice({"xx", "yy", "xy", "pressure"})
+                                        : cn.choice({"xx", "yy", "zz", "xy", "xz", "yz", "pressure"});
+    const int i = comp == "pressure" ? -1 : comp[0] - 'x', j = comp == "pressure" ? -1 : comp[1] - 'x';
+    const int dim = w.dim;
+    return [box, i, j, dim](const World& x) {
+        const Eigen::Matrix3d s = contact_stress_in(x, box);
+        if (i < 0) return -s.trace() / dim;
+        return 0.5 * (s(i, j) + s(j, i));
+    };
+}
+
 } // namespace
 
 void register_granular_measurements(std::map<std::string, MeasurementInfo>& into) {
     into["heap_angle"] = {"angle of a heap's flank to the horizontal: a line fitted to the highest ball top of each strip of "
                           "strip_width from x_min to x_max, of the balls with y_min <= y <= y_max (optional; an empty strip reads y_min) [degrees]",
                           heap_angle};
+    into["contact_stress"] = {"stress in the box [min, max] from the contacts whose point lies in it, "
+                              "-(1/V) sum of branch (x) force (Love-Weber; tension positive; a wall contact's branch ends on "
+                              "the wall's surface): component xx, yy, zz, xy, xz, yz (symmetric part) or pressure (-trace/dim) [Pa]",
+                              contact_stress};
 }
 
 } // namespace plab

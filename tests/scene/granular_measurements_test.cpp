@@ -59,3 +59,44 @@ TEST_CASE("heap_angle reads an empty strip as the bare base y_min, is NaN withou
     json wide = flank(1.0, {{"strip_width", 0.02}});
     CHECK_THROWS_WITH(Simulation(wide), Contains("scene.histories.record[1].with.strip_width") && Contains("three strips"));
 }
+
+namespace {
+
+// A square lattice of fixed balls (radius R, spacing s < 2R: every
+// neighbour pair overlaps by d = 2R - s), linear springs kn: each contact
+// pushes with kn d, one x contact and one y contact per cell of s^2, so
+// the contact stress is -kn d / s in xx and yy (tension positive), zero
+// in xy. The box [s/4, s/4 + m s]^2 holds m^2 of each kind of contact
+// point (x contacts at ((i + 1/2) s, j s), y contacts at (i s, (j + 1/2) s)).
+json compressed_lattice(const json& component) {
+    const double s = 0.0019;
+    const double lo = 0.25 * s, hi = 0.25 * s + 6 * s;
+    json bodies = json::array();  // (a lattice generator refuses overlapping spacings)
+    for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < 10; ++j)
+            bodies.push_back({{"type", "ball"}, {"group", "grid"}, {"position", {i * s, j * s}}, {"radius", kR},
+                              {"density", 2500}, {"fix", {"all"}}});
+    return {{"dimension", 2},
+            {"plugins", {"linear"}},
+            {"bodies", bodies},
+            {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"}, {"properties", {{"kn", 1e5}}}}}},
+            {"timestep", {{"fixed", 1e-6}}},
+            {"histories", {{"every", 1}, {"record", {{{"name", "s"}, {"quantity", "measure.contact_stress"},
+                                                      {"with", {{"min", {lo, lo}}, {"max", {hi, hi}}, {"component", component}}}}}}}}};
+}
+
+} // namespace
+
+TEST_CASE("contact_stress of a uniformly compressed square lattice is -kn d / s, without shear", "[measurements]") {
+    const double s = 0.0019, d = 2 * kR - s, expected = -1e5 * d / s;
+    for (const char* component : {"xx", "yy", "xy", "pressure"}) {
+        INFO(component);
+        Simulation sim(compressed_lattice(component));
+        sim.set_quiet(true);
+        sim.cycle(1);
+        const double got = sim.history("s").back();
+        if (std::string(component) == "xy") CHECK(std::fabs(got) <= 1e-9 * std::fabs(expected));
+        else if (std::string(component) == "pressure") CHECK(got == Approx(-expected).epsilon(1e-12));
+        else CHECK(got == Approx(expected).epsilon(1e-12));
+    }
+}

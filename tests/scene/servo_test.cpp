@@ -49,6 +49,36 @@ TEST_CASE("a servo lid presses a packing to its target stress and comes to rest 
     }
 }
 
+TEST_CASE("at rest under a servo lid, the packing's stress from its contacts is the lid's stress within 1 %",
+          "[scene][servo][measurements]") {
+    json scene = pressed_packing(1e5);
+    // frictionless walls, as a biaxial test's platens: the walls' stress is then normal only
+    scene["contact_models"].push_back({{"groups", {"grains", "walls"}}, {"model", "linear"},
+                                       {"properties", {{"kn", 1e6}, {"ks", 1e6}, {"fric", 0.0}}}});
+    // the whole packing: the measurement box reaches past the walls (a wall
+    // contact's point lies half the overlap inside the wall) and above the
+    // lid, so its volume is rescaled to the packing's (0.1 m x the lid's
+    // height) below
+    scene["histories"] = {{"every", 1000},
+                          {"record", {{{"name", "syy"}, {"quantity", "measure.contact_stress"},
+                                       {"with", {{"min", {-0.01, -0.01}}, {"max", {0.11, 0.2}}, {"component", "yy"}}}},
+                                      {{"name", "sxx"}, {"quantity", "measure.contact_stress"},
+                                       {"with", {{"min", {-0.01, -0.01}}, {"max", {0.11, 0.2}}, {"component", "xx"}}}}}}};
+    Simulation sim(scene);
+    sim.set_quiet(true);
+    sim.cycle(40000);
+    const World& w = sim.world();
+    const int lid = w.walls.find("lid");
+    double height = 0;
+    for (const Facet& f : w.walls.facets)
+        if (f.wall == lid) height = f.a.y();
+    const double lid_stress = w.walls.walls[std::size_t(lid)].force.y() / 0.1;
+    const double syy = sim.history("syy").back() * (0.12 * 0.21) / (0.1 * height);  // (tension positive: the packing is compressed)
+    CHECK(lid_stress == Approx(1e5).epsilon(0.01));
+    CHECK(-syy == Approx(lid_stress).epsilon(0.01));
+    CHECK(sim.history("sxx").back() < 0);  // (the sides hold the packing in too)
+}
+
 TEST_CASE("a servo on an unknown wall, a zero direction or a second servo on a wall is refused by path", "[scene][servo]") {
     json s = pressed_packing(1e4);
     s["servos"][0]["wall"] = "lidd";
