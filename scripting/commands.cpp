@@ -494,7 +494,7 @@ void Simulation::load_commands(const Node& n) {
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node c = n.at(i);
         c.expect_object();
-        if (c.size() != 1) c.fail("a command is an object with one key: cycle, solve, set, bond, histories or output");
+        if (c.size() != 1) c.fail("a command is an object with one key: cycle, solve, set, bond, servo, histories or output");
         Command cmd{Command::cycle, c.path()};
         if (c.has("cycle")) {
             cmd.value = double(c.at("cycle").integer(0, 1L << 50));
@@ -536,8 +536,14 @@ void Simulation::load_commands(const Node& n) {
         } else if (c.has("bond")) {
             cmd.kind = Command::set;
             cmd.apply = load_bond(c.at("bond"));
+        } else if (c.has("servo")) {
+            // a servo's switch lives in the run, not in the world: a restart
+            // replays the servo commands the run has done
+            cmd.kind = Command::set;
+            cmd.replayed_on_restart = true;
+            cmd.apply = [this, change = read_servo_command(c.at("servo"), servos_, *world_)](World&) { change(servos_); };
         } else {
-            c.fail("unknown command \"" + c.value().begin().key() + "\"; commands: cycle, solve, set, bond, histories, output");
+            c.fail("unknown command \"" + c.value().begin().key() + "\"; commands: cycle, solve, set, bond, servo, histories, output");
         }
         commands_.push_back(std::move(cmd));
     }

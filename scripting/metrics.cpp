@@ -230,15 +230,20 @@ namespace {
 // and whose value is a number.
 struct Samples {
     std::vector<double> t, h;
+    std::vector<double> x;  // the column "x" at the same samples, when the metric names one (reduce slope)
     double t_before = std::nan("");  // time of the last sample before the window (NaN: none)
 };
-Samples in_window(const Node& m, const std::vector<double>& t, const std::vector<double>& h) {
+Samples in_window(const Node& m, const std::vector<double>& t, const std::vector<double>& h, const std::vector<double>* x = nullptr) {
     const double from = m.number_or("from", -kInf), to = m.number_or("to", kInf);
     if (!(to > from)) m.at("to").fail("the window [from, to] = [" + std::to_string(from) + ", " + std::to_string(to) +
                                       "] is empty; \"to\" must exceed \"from\"");
     Samples out;
     for (std::size_t k = 0; k < h.size() && k < t.size(); ++k) {  // a NaN sample has no value (a probe with nothing in reach)
-        if (t[k] >= from && t[k] <= to && !std::isnan(h[k])) { out.t.push_back(t[k]); out.h.push_back(h[k]); }
+        if (t[k] >= from && t[k] <= to && !std::isnan(h[k]) && (!x || (k < x->size() && !std::isnan((*x)[k])))) {
+            out.t.push_back(t[k]);
+            out.h.push_back(h[k]);
+            if (x) out.x.push_back((*x)[k]);
+        }
         if (t[k] < from) out.t_before = t[k];
     }
     return out;  // empty when a run stopped before the window: no error figure, not a scene error
@@ -275,15 +280,31 @@ std::vector<double> named_history(const Node& where, const std::string& name, co
     }
 }
 
+// The least-squares slope of y against x (NaN for fewer than two distinct x):
+// a rate of one measured quantity against another, e.g. the volumetric
+// against the axial strain of a sheared sample (its dilatancy).
+double slope(const std::vector<double>& x, const std::vector<double>& y) {
+    const double n = double(x.size());
+    double mx = 0, my = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) { mx += x[k] / n; my += y[k] / n; }
+    double sxy = 0, sxx = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+        sxy += (x[k] - mx) * (y[k] - my);
+        sxx += (x[k] - mx) * (x[k] - mx);
+    }
+    return sxx > 0 ? sxy / sxx : std::nan("");
+}
+
 // The history reduced to one number ("reduce", default final) times
 // "scale", over |the first sample of the history "relative_to"| if given
 // (e.g. an energy drift over the initial kinetic energy).
 double reduced(const Node& m, const Samples& s, const Simulation& sim) {
     const std::string op = m.has("reduce") ? m.at("reduce").choice({"final", "change", "max", "min", "time_of_max", "mean",
                                                                     "time_mean", "max_abs", "time_below_zero", "drift",
-                                                                    "max_deviation", "period", "frequency"})
+                                                                    "max_deviation", "period", "frequency", "slope"})
                                            : "final";
-    double value = (op == "time_mean" ? time_mean(s) : reduce(m, s.h, s.t, op)) * m.number_or("scale", 1.0);
+    const double raw = op == "time_mean" ? time_mean(s) : op == "slope" ? slope(s.x.empty() ? s.t : s.x, s.h) : reduce(m, s.h, s.t, op);
+    double value = raw * m.number_or("scale", 1.0);
     if (m.has("relative_to")) {
         const std::vector<double> base = named_history(m.at("relative_to"), m.at("relative_to").string(), sim);
         value /= std::fabs(base.empty() ? std::nan("") : base.front());
@@ -393,11 +414,14 @@ json reduced_against_reference(const Node& m, const Samples& s, const std::strin
 
 json one_metric(const Node& m, const Simulation& sim, const std::string& scene_dir) {
     m.allow_keys({"name", "history", "reduce", "scale", "relative_to", "analytical", "against", "exact", "norm", "event", "from", "to",
-                  "time_history", "x_scale", "y_scale", "reference"});
+                  "time_history", "x_scale", "y_scale", "reference", "x"});
     json out = {{"name", m.at("name").string()}};
     const std::vector<double> h = named_history(m.at("history"), m.at("history").string(), sim);
     const std::vector<double> t = named_history(m, m.string_or("time_history", "time"), sim);
-    const Samples s = in_window(m, t, h);
+    if (m.has("x") && !(m.has("reduce") && m.at("reduce").string() == "slope"))
+        m.at("x").fail("\"x\" goes with \"reduce\": \"slope\" (the slope of the history against x)");
+    const std::vector<double> x = m.has("x") ? named_history(m.at("x"), m.at("x").string(), sim) : std::vector<double>{};
+    const Samples s = in_window(m, t, h, m.has("x") ? &x : nullptr);
     if (s.h.empty()) {
         out["error"] = std::nan("");
         out["note"] = "no sample inside [from, to]: the run ended before the window";
@@ -405,7 +429,7 @@ json one_metric(const Node& m, const Simulation& sim, const std::string& scene_d
     }
     if (m.has("analytical")) return relative_to(std::move(out), reduced(m, s, sim), m.at("analytical").number());
     if (m.has("against")) {  // a solution that depends on the run (e.g. on a measured length): another column, reduced alike
-        const Samples r = in_window(m, t, named_history(m.at("against"), m.at("against").string(), sim));
+        const Samples r = in_window(m, t, named_history(m.at("against"), m.at("against").string(), sim), m.has("x") ? &x : nullptr);
         return relative_to(std::move(out), reduced(m, s, sim), reduced(m, r, sim));
     }
     if (m.has("exact")) return exact_metric(m, s, sim, std::move(out));

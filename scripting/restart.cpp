@@ -334,6 +334,8 @@ void Simulation::load_run_state(CheckpointReader& in) {
     command_end_time_ = in.f64();
     command_breaks_before_ = in.u64();
     if (next_command_ > commands_.size()) in.fail("the next command is past the end of the list");
+    for (std::size_t k = 0; k < next_command_; ++k)
+        if (commands_[k].replayed_on_restart) commands_[k].apply(*world_);
 
     in.section("outputs");
     std::vector<std::string> columns(in.u64());

@@ -50,6 +50,7 @@ struct Command {
     long max_cycles = 0;
     bool stop_on_bond_break = false;  // solve: stop after the step in which the first bond breaks
     std::function<void(World&)> apply;  // for `set`
+    bool replayed_on_restart = false;    // a `set` that changes the run's own state (a servo), not the world's
 };
 
 struct RunSummary {

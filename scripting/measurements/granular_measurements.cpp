@@ -3,6 +3,7 @@
 #include "measurement.hpp"
 
 #include "../generators.hpp"
+#include "../servo.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -67,50 +68,126 @@ Measurement heap_angle(const Node& with, const World& w) {
     };
 }
 
-// The stress in a box from the contacts whose point lies in it (Love–Weber,
-// as PFC's measurement logic): sigma = -(1/V) sum_c l_c (x) f_c, tension
-// positive, with f_c the force on end 2 and l_c the branch from end 1's
-// centre to end 2's (ball–ball) or to the wall's surface (ball–wall: the
-// wall is outside the volume, which the walls then bound exactly: a
-// packing at rest between walls gives their stress). V is the box's
-// volume (2D: area x 1 m).
-Eigen::Matrix3d contact_stress_in(const World& x, const Box& box) {
+// The region a contact stress is taken in: a box [lo, hi], or the space
+// between pairs of parallel walls (a sample between its platens, whose
+// volume changes as they move).
+struct StressRegion {
+    Box box{Vec::Zero(), Vec::Zero()};
+    std::vector<std::pair<int, int>> walls;  // when set: the region between each pair
+};
+
+// The region's volume now (2D: area x 1 m), and whether a contact point
+// lies in it. Between walls, points up to 1 % of the walls' distance
+// beyond either wall count: a wall contact's point lies half its overlap
+// inside the wall.
+struct Slab {
+    Vec origin;  // a point of wall a
+    Vec across;  // a's unit normal towards b over their distance: (x - origin) . across is 0 at a, 1 at b
+};
+struct RegionNow {
+    double volume = 1;
+    std::vector<Slab> slabs;  // between walls
+    Box box{Vec::Zero(), Vec::Zero()};
+    int dim = 3;
+    bool contains(const Vec& c) const {
+        if (slabs.empty()) {
+            for (int d = 0; d < dim; ++d)
+                if (c[d] < box.lo[d] || c[d] > box.hi[d]) return false;
+            return true;
+        }
+        for (const Slab& slab : slabs) {
+            const double s = (c - slab.origin).dot(slab.across);
+            if (s < -0.01 || s > 1.01) return false;
+        }
+        return true;
+    }
+};
+
+RegionNow region_now(const World& x, const StressRegion& r) {
+    RegionNow now;
+    now.dim = x.dim;
+    now.box = r.box;
+    if (r.walls.empty()) {
+        for (int d = 0; d < x.dim; ++d) now.volume *= r.box.hi[d] - r.box.lo[d];
+        return now;
+    }
+    for (const auto& [a, b] : r.walls) {
+        const Facet& fa = x.walls.facets[std::size_t(x.walls.walls[std::size_t(a)].facets[0])];
+        const Facet& fb = x.walls.facets[std::size_t(x.walls.walls[std::size_t(b)].facets[0])];
+        const Vec towards = fb.a - fa.a;  // (the distance is along a's normal, whatever the facets' vertices)
+        const double d = wall_distance(x, a, b);
+        Vec n = wall_normal(x, a);
+        if (n.dot(towards) < 0) n = -n;
+        now.volume *= d;
+        now.slabs.push_back({fa.a, n / d});
+    }
+    return now;
+}
+
+// The stress in a region from the contacts whose point lies in it (Love–
+// Weber, as PFC's measurement logic): sigma = -(1/V) sum_c l_c (x) f_c,
+// tension positive, with f_c the force on end 2 and l_c the branch from end
+// 1's centre to end 2's (ball–ball) or to the wall's surface (ball–wall:
+// the wall is outside the volume, which the walls then bound exactly: a
+// packing at rest between walls gives their stress).
+Eigen::Matrix3d contact_stress_in(const World& x, const StressRegion& region) {
+    const RegionNow now = region_now(x, region);
     Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
     for (std::size_t m = 0; m < x.model_count(); ++m)
         for (const ContactTable& t : {x.model(m).balls(), x.model(m).walls()})
             for (std::size_t k = 0; k < t.size(); ++k) {
-                if (!t.active(k)) continue;
-                const Vec c = t.point(k);
-                bool in = true;
-                for (int d = 0; d < x.dim; ++d) in &= c[d] >= box.lo[d] && c[d] <= box.hi[d];
-                if (!in) continue;
+                if (!t.active(k) || !now.contains(t.point(k))) continue;
                 const Vec from = x.bodies.position[t.end1(k)];
                 const Vec l = t.with_wall() ? Vec(t.normal(k) * (t.gap(k) + t.end_radius(k, false)))
                                             : Vec(x.bodies.position[t.end2(k)] - from);
                 sum -= l * t.force(k).transpose();
             }
-    double volume = 1;
-    for (int d = 0; d < x.dim; ++d) volume *= box.hi[d] - box.lo[d];
-    return sum / volume;
+    return sum / now.volume;
+}
+
+// The region of a contact_stress: "min" and "max", or "walls" (dim pairs).
+StressRegion read_stress_region(const Node& with, const World& w) {
+    StressRegion r;
+    if (with.has("walls") == (with.has("min") || with.has("max")))
+        with.fail("a contact stress is taken in a box (min, max) or between walls (walls: pairs of wall names), one of the two");
+    if (with.has("walls")) {
+        const Node pairs = with.at("walls");
+        pairs.expect_array();
+        if (pairs.size() != std::size_t(w.dim))
+            pairs.fail("expected " + std::to_string(w.dim) + " pairs of walls in " + std::to_string(w.dim) + "D (one per direction), got " +
+                       std::to_string(pairs.size()));
+        for (std::size_t i = 0; i < pairs.size(); ++i) r.walls.push_back(read_wall_pair(pairs.at(i), w));
+        return r;
+    }
+    r.box = Box{with.at("min").vec(w.dim), with.at("max").vec(w.dim)};
+    for (int d = 0; d < w.dim; ++d)
+        if (!(r.box.lo[d] < r.box.hi[d])) with.at("max").fail("the box's max must exceed its min in every direction");
+    return r;
 }
 
 // contact_stress: one component of contact_stress_in() (the symmetric part
 // for a shear component), or the pressure -trace / dim.
 Measurement contact_stress(const Node& with, const World& w) {
-    with.allow_keys({"min", "max", "component"});
-    Box box{with.at("min").vec(w.dim), with.at("max").vec(w.dim)};
-    for (int d = 0; d < w.dim; ++d)
-        if (!(box.lo[d] < box.hi[d])) with.at("max").fail("the box's max must exceed its min in every direction");
+    with.allow_keys({"min", "max", "walls", "component"});
+    const StressRegion region = read_stress_region(with, w);
     const Node cn = with.at("component");
     const std::string comp = w.dim == 2 ? cn.choice({"xx", "yy", "xy", "pressure"})
                                         : cn.choice({"xx", "yy", "zz", "xy", "xz", "yz", "pressure"});
     const int i = comp == "pressure" ? -1 : comp[0] - 'x', j = comp == "pressure" ? -1 : comp[1] - 'x';
     const int dim = w.dim;
-    return [box, i, j, dim](const World& x) {
-        const Eigen::Matrix3d s = contact_stress_in(x, box);
+    return [region, i, j, dim](const World& x) {
+        const Eigen::Matrix3d s = contact_stress_in(x, region);
         if (i < 0) return -s.trace() / dim;
         return 0.5 * (s(i, j) + s(j, i));
     };
+}
+
+// wall_distance: the distance between two parallel planar walls, e.g. a
+// sample's height between its platens (axial strain).
+Measurement wall_distance_between(const Node& with, const World& w) {
+    with.allow_keys({"walls"});
+    const auto [a, b] = read_wall_pair(with.at("walls"), w);
+    return [a = a, b = b](const World& x) { return wall_distance(x, a, b); };
 }
 
 } // namespace
@@ -119,10 +196,13 @@ void register_granular_measurements(std::map<std::string, MeasurementInfo>& into
     into["heap_angle"] = {"angle of a heap's flank to the horizontal: a line fitted to the highest ball top of each strip of "
                           "strip_width from x_min to x_max, of the balls with y_min <= y <= y_max (optional; an empty strip reads y_min) [degrees]",
                           heap_angle};
-    into["contact_stress"] = {"stress in the box [min, max] from the contacts whose point lies in it, "
+    into["contact_stress"] = {"stress in the box [min, max], or between walls: [[a, b], ...] (one pair of parallel walls per "
+                              "direction; the volume follows them), from the contacts whose point lies in it, "
                               "-(1/V) sum of branch (x) force (Love-Weber; tension positive; a wall contact's branch ends on "
                               "the wall's surface): component xx, yy, zz, xy, xz, yz (symmetric part) or pressure (-trace/dim) [Pa]",
                               contact_stress};
+    into["wall_distance"] = {"distance between two parallel planar walls, walls: [a, b] (their names), along a's normal [m]",
+                             wall_distance_between};
 }
 
 } // namespace plab

@@ -64,6 +64,22 @@ TEST_CASE("time_mean weights each sample by the time since the one before it, an
     CHECK(figure(window, sim, ".", "value") == Approx(-10 * (0.54 + 1.5) / 2));  // samples 0.54 ... 1.5, each 0.04 s
 }
 
+TEST_CASE("slope is the least-squares rate of one history against another, or against time", "[metrics]") {
+    json scene = falling_ball();
+    scene["histories"]["record"].push_back({{"name", "y"}, {"quantity", "ball.position.y"}, {"id", 0}});
+    Simulation sim(scene);
+    sim.set_quiet(true);
+    sim.cycle(100);
+    // v = -10 t exactly at every sample: dv/dt = -10, and dv/dv = 1
+    CHECK(figure({{{"name", "a"}, {"history", "vy"}, {"reduce", "slope"}}}, sim, ".", "value") == Approx(-10).epsilon(1e-12));
+    CHECK(figure({{{"name", "a"}, {"history", "vy"}, {"reduce", "slope"}, {"x", "vy"}, {"from", 0.3}}}, sim, ".", "value") ==
+          Approx(1).epsilon(1e-12));
+    // the leapfrog's y is quadratic in t: its slope over [0.5, 1] is the mean velocity there, -7.5 (to a step)
+    CHECK(figure({{{"name", "a"}, {"history", "y"}, {"reduce", "slope"}, {"from", 0.5}}}, sim, ".", "value") == Approx(-7.5).epsilon(0.01));
+    const json x_without_slope = {{{"name", "a"}, {"history", "vy"}, {"x", "y"}}};
+    CHECK_THROWS_WITH(evaluate_metrics(x_without_slope, sim, "."), Contains("scene.metrics[0].x") && Contains("slope"));
+}
+
 TEST_CASE("a curve metric gives the RMS difference in the reference's units, or how far the run leads", "[metrics]") {
     const fs::path dir = scratch_dir();
     // series A: at t = 0 (v = 0: only the RMS counts it), 0.2 (run -2 against -2.5: leads by 0.2), 0.4 (run -4

@@ -1,14 +1,17 @@
 // Servo-controlled walls (scripting/servo.hpp, issue 36): a lid pressed on
 // a packing of discs reaches its target stress and stops there; the stress
-// it reports is the balls' force on it over its area; bad servos are
-// refused by path.
+// it reports is the balls' force on it over its area; the packing's stress
+// from its contacts is the lid's; a servo let go by a command stays off
+// across a restart; bad servos are refused by path.
 #include "simulation.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
 
 using namespace plab;
+namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
 namespace {
@@ -92,4 +95,31 @@ TEST_CASE("a servo on an unknown wall, a zero direction or a second servo on a w
     s = pressed_packing(1e4);
     s["servos"][0].erase("max_speed");
     CHECK_THROWS_WITH(Simulation(s), Contains("scene.servos[0].max_speed"));
+}
+
+TEST_CASE("a servo let go by a command stays off after a restart: the run resumes to the same bits", "[scene][servo][restart]") {
+    json scene = pressed_packing(1e5);
+    scene["timestep"] = {{"fixed", 2e-5}};
+    // pressed, then the lid let go and pushed down at a constant speed (a
+    // platen); the checkpoint falls after the let-go, so a restart that
+    // forgot it would drive the lid by the servo again
+    scene["commands"] = {{{"cycle", 3000}},
+                         {{"servo", {{"wall", "lid"}, {"off", true}}}},
+                         {{"set", {{"wall", "lid"}, {"velocity", {0, -0.02}}}}},
+                         {{"cycle", 2000}}};
+    const fs::path dir = fs::temp_directory_path() / "plab_servo_restart";
+    fs::remove_all(dir);
+    Simulation whole(scene);
+    whole.set_quiet(true);
+    whole.set_output_dir(dir.string());
+    whole.set_checkpoint_every(4000 * 2e-5);  // one checkpoint, near step 4000
+    whole.run();
+    const World& w = whole.world();
+    CHECK(w.walls.walls[std::size_t(w.walls.find("lid"))].velocity.y() == -0.02);  // the servo stayed off
+    auto resumed = Simulation::restart(whole.checkpoint_path());
+    resumed->set_quiet(true);
+    CHECK(resumed->world().step_count > 3000);
+    resumed->run();
+    CHECK(resumed->world().step_count == 5000);
+    CHECK(state_hash(resumed->world()) == state_hash(w));
 }
