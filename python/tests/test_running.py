@@ -92,3 +92,14 @@ def test_an_unstable_run_raises_run_error_naming_the_quantity(scenes):
     with pytest.raises(plab.RunError) as e:
         sim.cycle(2000)
     assert e.value.quantity != ""
+
+
+def test_the_restitution_example_gives_the_closed_form_of_the_linear_dashpot():
+    import importlib.util
+    source = os.environ.get("PLAB_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+    spec = importlib.util.spec_from_file_location(
+        "restitution_study", os.path.join(source, "examples", "python", "restitution_study.py"))
+    study = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(study)
+    for beta in (0.1, 0.3):
+        assert study.restitution(beta) == pytest.approx(study.closed_form(beta), rel=0.01)
