@@ -22,6 +22,7 @@
 // compares it before the next; a change marks the world dirty
 // (World::mark_dirty), as the scene's `set` command does, so that the lists,
 // the caches of fixed balls and the last good state follow it.
+#include "python_law.hpp"
 #include "simulation.hpp"
 
 #include <plab_host/checkpoint.hpp>
@@ -53,6 +54,7 @@ std::string g_installed_plugins;
 
 std::shared_ptr<PluginHost> make_host() {
     auto host = std::make_shared<PluginHost>();
+    python::register_laws(*host);  // first: a library cannot take their names
     if (!g_installed_plugins.empty() && fs::is_directory(g_installed_plugins)) {
         host->add_search_dir(g_installed_plugins, true);
         if (const char* env = std::getenv("PLAB_PLUGIN_PATH")) {  // the user's folders stay first
@@ -213,7 +215,10 @@ public:
         // forces at the loaded state and the columns trimmed to their rows,
         // as the first step would (and `plab run` does before it): from here
         // on their storage moves only with inlets and outlets
-        if (fresh) s_->world().prepare();
+        if (fresh) {
+            py::gil_scoped_release release;  // (a Python law takes the GIL from the kernel's threads)
+            s_->world().prepare();
+        }
         s_->layout = s_->current_layout();
     }
 
@@ -368,7 +373,12 @@ private:
 std::unique_ptr<PySim> load_scene(json scene, const std::vector<std::string>& sets, const std::string& scene_dir,
                                   const std::string& out_dir) {
     for (const auto& s : sets) apply_override(scene, s);
-    auto sim = std::make_unique<Simulation>(scene, scene_dir, make_host());
+    auto host = make_host();
+    std::unique_ptr<Simulation> sim;
+    {
+        py::gil_scoped_release release;
+        sim = std::make_unique<Simulation>(scene, scene_dir, host);
+    }
     if (!out_dir.empty()) sim->set_output_dir(out_dir);
     return std::make_unique<PySim>(std::move(sim), true);
 }
@@ -425,6 +435,9 @@ PYBIND11_MODULE(_plab, m) {
         .def("contacts", &PySim::contacts)
         .def("live_views", &PySim::live_views);
 
+    m.def("register_law", &python::register_law, py::arg("name"), py::arg("doc"), py::arg("timestep_rule"),
+          py::arg("law"), py::arg("properties"), py::arg("history"), py::arg("range_key"));
+    m.def("law_names", &python::law_names);
     m.def("set_installed_plugin_dir", [](const std::string& dir) { g_installed_plugins = dir; });
     m.def(
         "load_file",
@@ -443,7 +456,13 @@ PYBIND11_MODULE(_plab, m) {
     m.def(
         "restart",
         [](const std::string& path, const std::vector<std::string>& sets) {
-            return std::make_unique<PySim>(Simulation::restart(path, sets, make_host()), false);
+            auto host = make_host();
+            std::unique_ptr<Simulation> sim;
+            {
+                py::gil_scoped_release release;
+                sim = Simulation::restart(path, sets, host);
+            }
+            return std::make_unique<PySim>(std::move(sim), false);
         },
         py::arg("path"), py::arg("sets"));
 }

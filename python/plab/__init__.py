@@ -31,8 +31,31 @@ class StaleViewError(Error):
     """A view used after a cycle that moved the storage it showed."""
 
 
-__all__ = ["load", "restart", "Simulation", "View", "Error", "InputError", "PluginError", "RunError",
-           "CheckpointError", "StaleViewError"]
+__all__ = ["load", "restart", "register_model", "Simulation", "View", "Error", "InputError", "PluginError",
+           "RunError", "CheckpointError", "StaleViewError"]
+
+for _cls in (Error, InputError, PluginError, RunError, CheckpointError):
+    _cls.__module__ = "plab"
+
+
+def register_model(name, law, properties, history=(), doc="", range=None,
+                   timestep_rule="per ball sqrt(m / sum k) over its contacts, k the batch's stiffness"):
+    """A contact model whose law is a Python function over a batch of contacts
+    (NumPy columns, plab.laws), for the scenes loaded from now on: a scene
+    names it as any plug-in's model ("model": name), without a "plugins" entry.
+    properties: (key, name, unit, default, min, max, doc) tuples, numbers;
+    history: (name, doc, default, negate_on_swap, tangential) tuples;
+    range: the key of the property that is the activity range (a surface
+    gap, m), or None for 0 (active while touching).
+    It is slow (one Python call per batch of 512 contacts; docs/python.md),
+    and a checkpoint of a scene that uses it cannot be restarted.
+    Example: plab.register_model("py_linear", plab.laws.linear,
+    plab.laws.LINEAR_PROPERTIES, plab.laws.LINEAR_HISTORY, range="rgap")."""
+    _plab.register_law(name, doc or ("a contact law in Python: " + getattr(law, "__name__", "law")), timestep_rule,
+                       law, [tuple(p) for p in properties], [tuple(h) for h in history], range or "")
+
+
+from . import laws  # noqa: E402  (the NumPy laws, plab.laws.linear)
 
 
 def _assignments(set, overrides):
