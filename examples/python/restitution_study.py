@@ -24,12 +24,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SCENE = os.path.join(HERE, "..", "teaching", "bounce.json")
 
 
-def restitution(beta, speed=1.0):
+def restitution(beta, speed=1.0, model="linear"):
     """Rebound over impact speed of one bounce with damping ratio beta. The
     closed form is that of a contact alone, so gravity is switched off and the
     disc thrown at the floor instead: its speed is constant before and after."""
     sim = plab.load(SCENE, set={"contact_models.0.properties.dp_nratio": beta, "gravity": [0, 0],
-                                "bodies.0.velocity": [0, -speed]})
+                                "bodies.0.velocity": [0, -speed], "contact_models.0.model": model})
     touch = sim.scene["walls"][0]["from"][1] + sim.radii[0]  # the centre's height at gap 0
     y, vy = sim.positions, sim.velocities  # views: read after every step, never copied
     touched = []

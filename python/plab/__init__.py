@@ -48,7 +48,8 @@ def register_model(name, law, properties, history=(), doc="", range=None,
     range: the key of the property that is the activity range (a surface
     gap, m), or None for 0 (active while touching).
     It is slow (one Python call per batch of 512 contacts; docs/python.md),
-    and a checkpoint of a scene that uses it cannot be restarted.
+    and a checkpoint of a scene that uses it restarts only in a Python session
+    that has registered the law under the same name.
     Example: plab.register_model("py_linear", plab.laws.linear,
     plab.laws.LINEAR_PROPERTIES, plab.laws.LINEAR_HISTORY, range="rgap")."""
     _plab.register_law(name, doc or ("a contact law in Python: " + getattr(law, "__name__", "law")), timestep_rule,

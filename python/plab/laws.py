@@ -69,7 +69,7 @@ def linear(batch):
     batch["strain_energy"][:] = np.where(active, strain, 0.0)
     batch["dashpot_energy"][:] = np.where(active, dashpot, 0.0)
     batch["slip_energy"][:] = np.where(active & sliding & (ks > 0.0), slip, 0.0)
-    batch["stiffness"][:] = max(kn, ks)
+    batch["stiffness"][:] = np.where(active, max(kn, ks), 0.0)
 
 
 LINEAR_PROPERTIES = [

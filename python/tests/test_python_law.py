@@ -70,3 +70,15 @@ def test_a_law_with_a_default_outside_its_range_is_refused_naming_the_property()
         plab.register_model("py_bad", plab.laws.linear, props)
     assert "kn" in str(e.value)
     assert "py_bad" not in plab._plab.law_names()
+
+
+def test_a_run_with_a_python_law_restarts_from_its_checkpoint_to_the_same_bits(tmp_path, py_linear):
+    scene = with_model(pile(count=60), py_linear)
+    whole = plab.load(scene)
+    whole.cycle(300)
+    half = plab.load(scene)
+    half.cycle(150)
+    half.checkpoint(tmp_path / "half.plab")
+    again = plab.restart(tmp_path / "half.plab")
+    again.cycle(150)
+    assert again.state_hash() == whole.state_hash()
