@@ -2,7 +2,7 @@
 """A contact law written in NumPy, swapped for `linear` in the teaching
 bounce, then changed the way a student would, and timed against the C++ law.
 
-    PYTHONPATH=build/python OMP_NUM_THREADS=1 python3 examples/python/python_law.py [--count 400] [--steps 2000]
+    PYTHONPATH=build/python OMP_NUM_THREADS=1 python3 examples/python/python_law.py [--count 400] [--steps 2000] [--plot law.png]
 
 1. plab.laws.linear (the linear law in NumPy) registered as "py_linear": the
    bounce of examples/teaching/bounce.json gives the same restitution as
@@ -39,6 +39,29 @@ def restitution(model, beta):
     return restitution_study.restitution(beta, model=model)
 
 
+def plot(betas, table, path):
+    """e against beta: linear (C++), its NumPy copy, and the student's change."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("matplotlib is not installed (python3-matplotlib): no plot")
+        return
+    e = np.array(table)
+    fine = np.linspace(0, 0.65, 100)
+    plt.plot(fine, [restitution_study.closed_form(b) for b in fine], "k-", lw=0.8, label="exp(-βπ/√(1-β²))")
+    plt.plot(betas, e[:, 0], "o", ms=9, mfc="none", label="linear (C++ plug-in)")
+    plt.plot(betas, e[:, 1], "x", ms=7, label="py_linear (NumPy, same law)")
+    plt.plot(betas, e[:, 2], "s", ms=5, label="py_no_tension (the dashpot may not pull)")
+    plt.xlabel("normal damping ratio β (dp_nratio)")
+    plt.ylabel("coefficient of restitution e")
+    plt.title("one bounce, examples/teaching/bounce.json: a law changed in Python")
+    plt.legend()
+    plt.savefig(path, dpi=110)
+    print("plot:", path)
+
+
 def pile(count, model):
     """About `count` discs in hexagonal stacking, touching from the start (every
     step has about three contacts per disc), under gravity in a box."""
@@ -58,6 +81,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--count", type=int, default=400, help="discs in the timed pile")
     ap.add_argument("--steps", type=int, default=2000)
+    ap.add_argument("--plot", help="a PNG of e against beta for the three laws (needs matplotlib)")
     a = ap.parse_args()
     plab.register_model("py_linear", plab.laws.linear, plab.laws.LINEAR_PROPERTIES, plab.laws.LINEAR_HISTORY,
                         range="rgap")
@@ -65,9 +89,14 @@ def main():
                         range="rgap")
     print("restitution of one bounce (bounce.json, gravity off, thrown at 1 m/s)")
     print("%6s %12s %12s %14s" % ("beta", "linear", "py_linear", "py_no_tension"))
-    for beta in (0.1, 0.3, 0.5):
+    betas = (0.1, 0.3, 0.5) if not a.plot else (0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6)
+    table = []
+    for beta in betas:
         e = [restitution(m, beta) for m in ("linear", "py_linear", "py_no_tension")]
+        table.append(e)
         print("%6.2f %12.6f %12.6f %14.6f%s" % (beta, *e, "" if e[0] == e[1] else "  (differs!)"))
+    if a.plot:
+        plot(betas, table, a.plot)
 
     count, steps = a.count, a.steps
     seconds, forces, hashes = {}, {}, {}
