@@ -57,6 +57,7 @@ def register_model(name, law, properties, history=(), doc="", range=None,
 
 
 from . import laws  # noqa: E402  (the NumPy laws, plab.laws.linear)
+from . import contract  # noqa: E402  (the contact-law contract, on a Python law)
 
 
 def _assignments(set, overrides):
