@@ -335,23 +335,77 @@ void check_drawn_fit(const Node& n, const std::vector<double>& radii, const Box&
     }
 }
 
-// Random non-overlapping fill by rejection on a background grid.
+double ball_volume(double r, int dim) { return dim == 2 ? M_PI * r * r : 4.0 / 3.0 * M_PI * r * r * r; }
+
+double box_volume(const Box& box, int dim) {
+    double v = 1;
+    for (int c = 0; c < dim; ++c) v *= box.hi[c] - box.lo[c];
+    return v;
+}
+
+// "solid_fraction": random placement without overlap jams near 0.55 of
+// the area (2D) and 0.38 of the volume (3D); above 0.5 / 0.35 a fill would
+// spend its attempts in vain.
+double read_solid_fraction(const Node& n, int dim) {
+    const double most = dim == 2 ? 0.5 : 0.35;
+    const double phi = n.number(0.0, kInf, true, false);
+    if (phi > most)
+        n.fail("value " + std::to_string(phi) + " is outside the valid range (0, " + std::to_string(most).substr(0, 4) + "] in " +
+               std::to_string(dim) + "D: random placement without overlap jams near " + (dim == 2 ? "0.55" : "0.38") +
+               "; fill looser and compress (servo walls), or use a lattice");
+    return phi;
+}
+
+// The number of balls of a radius range [lo, hi] (each drawn uniform) whose
+// expected volume makes up `volume`: E[r^d] = (hi^(d+1) - lo^(d+1)) / ((d+1)(hi - lo)).
+long count_for_volume(double volume, double lo, double hi, int dim) {
+    const double mean_power = hi > lo ? (std::pow(hi, dim + 1) - std::pow(lo, dim + 1)) / ((dim + 1) * (hi - lo)) : std::pow(lo, dim);
+    const double mean_ball = (dim == 2 ? M_PI : 4.0 / 3.0 * M_PI) * mean_power;
+    return std::max(1L, std::lround(volume / mean_ball));
+}
+
+// Radii drawn one by one until their volume reaches `volume`, largest first
+// (the order the fill places them in).
+std::vector<double> draw_to_volume(const SizeDistribution& sizes, double volume, int dim, Rng& rng) {
+    std::vector<double> radii;
+    for (double sum = 0; sum < volume;) {
+        radii.push_back(sizes.draw(rng));
+        sum += ball_volume(radii.back(), dim);
+    }
+    std::sort(radii.begin(), radii.end(), std::greater<double>());
+    return radii;
+}
+
+// Random non-overlapping fill by rejection on a background grid, to a count
+// of balls or to a solid fraction of the box.
 Box random_fill(const Node& n, World& w, const GeneratorLimits& limits, const std::string& scene_dir) {
-    n.allow_keys({"type", "group", "box", "radius", "density", "count", "seed", "fix", "local_damping", "viscous_damping", "max_attempts"});
+    n.allow_keys({"type", "group", "box", "radius", "density", "count", "solid_fraction", "seed", "fix", "local_damping",
+                  "viscous_damping", "max_attempts"});
     std::optional<SizeDistribution> sizes;
     if (n.at("radius").value().is_object()) sizes.emplace(n.at("radius"), w.dim, scene_dir);
     const Material m = read_material(n, w, true, false, sizes ? &*sizes : nullptr);
     const Box box = read_box(n.at("box"), w.dim);
-    const long count = n.at("count").integer(1, 100000000);
-    check_body_budget(n.at("count"), double(count), w, limits);
-    check_fill_possible(n.at("count"), count, m.radius_lo, box, w.dim);
+    if (n.has("count") == n.has("solid_fraction")) n.fail("a random fill takes one of: count, solid_fraction");
     Rng rng(std::uint64_t(n.has("seed") ? n.at("seed").integer(0, 1L << 40) : 1));
+    const Node amount = n.has("count") ? n.at("count") : n.at("solid_fraction");
+    std::vector<double> radii;  // with a distribution: drawn before the fill
+    long count = 0;
+    if (n.has("count")) {
+        count = n.at("count").integer(1, 100000000);
+    } else {
+        const double target = read_solid_fraction(amount, w.dim) * box_volume(box, w.dim);
+        check_body_budget(amount, target / ball_volume(m.radius_lo, w.dim), w, limits);  // (the most it can draw)
+        if (sizes) radii = draw_to_volume(*sizes, target, w.dim, rng);
+        count = sizes ? long(radii.size()) : count_for_volume(target, m.radius_lo, m.radius_hi, w.dim);
+    }
+    check_body_budget(amount, double(count), w, limits);
+    check_fill_possible(amount, count, m.radius_lo, box, w.dim);
     const long max_attempts = n.has("max_attempts") ? n.at("max_attempts").integer(1, 1L << 40) : 1000 * count;
     FillGrid grid(box, w.dim, m.radius_hi, count);
     long attempts = 0;
     if (sizes) {
-        const std::vector<double> radii = sizes->draw(count, rng);
-        check_drawn_fit(n.at("count"), radii, box, w.dim);
+        if (radii.empty()) radii = sizes->draw(count, rng);
+        check_drawn_fit(amount, radii, box, w.dim);
         attempts = fill_drawn_radii(grid, rng, radii, max_attempts);
     } else {
         attempts = fill_drawing_per_attempt(grid, rng, m, count, max_attempts);
@@ -359,8 +413,8 @@ Box random_fill(const Node& n, World& w, const GeneratorLimits& limits, const st
     if (long(grid.placed.size()) < count) {
         std::ostringstream s;
         s << "could place only " << grid.placed.size() << " of " << count << " non-overlapping balls in " << attempts
-          << " attempts; enlarge the box, lower the count or the radius";
-        n.at("count").fail(s.str());
+          << " attempts; enlarge the box, lower the " << (n.has("count") ? "count" : "solid fraction") << " or the radius";
+        amount.fail(s.str());
     }
     for (std::size_t i = 0; i < grid.placed.size(); ++i) add(w, m, grid.placed[i], grid.radii[i]);
     return box;

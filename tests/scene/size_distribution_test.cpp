@@ -119,3 +119,45 @@ TEST_CASE("a random fill with a distribution places the radii drawn, largest fir
     CHECK_THAT(refused({{"distribution", "normal"}, {"mean", 1e-3}, {"std", 1e-4}, {"min", 2e-3}, {"max", 3e-3}}),
                Contains("scene.bodies[0].radius.min") && Contains("4 standard deviations"));
 }
+
+namespace {
+
+// The balls' volume over the box's (2D: areas) after a fill of `body`.
+double filled_fraction(json body, int dim) {
+    json scene = {{"dimension", dim}, {"commands", json::array()}, {"bodies", {body}}};
+    Simulation sim(scene);
+    double balls = 0;
+    for (double r : sim.world().bodies.radius) balls += dim == 2 ? M_PI * r * r : 4.0 / 3.0 * M_PI * r * r * r;
+    return balls / (dim == 2 ? 0.01 : 0.001);
+}
+
+json fill_to(double phi, const json& radius, int dim) {
+    return {{"type", "random_fill"}, {"box", {{"min", json::array({0, 0, 0})}, {"max", json::array({0.1, 0.1, 0.1})}}},
+            {"solid_fraction", phi}, {"radius", radius}, {"density", 2500}, {"seed", 3}};
+}
+
+} // namespace
+
+TEST_CASE("a random fill to a solid fraction holds that fraction of the box, by one ball at most", "[scene][sizes]") {
+    for (int dim : {2, 3}) {
+        INFO(dim << "D");
+        const double phi = dim == 2 ? 0.4 : 0.25, r_max = 0.003;
+        const double one_ball = (dim == 2 ? M_PI * r_max * r_max / 0.01 : 4.0 / 3.0 * M_PI * std::pow(r_max, 3) / 0.001);
+        json box_2d = fill_to(phi, {{"distribution", "uniform"}, {"min", 0.002}, {"max", r_max}}, dim);
+        if (dim == 2) box_2d["box"] = {{"min", {0, 0}}, {"max", {0.1, 0.1}}};
+        const double with_sizes = filled_fraction(box_2d, dim);
+        CHECK(with_sizes >= phi);
+        CHECK(with_sizes < phi + one_ball);
+        // one radius: the count whose volume is nearest the fraction
+        json single = box_2d;
+        single["radius"] = r_max;
+        CHECK(filled_fraction(single, dim) == Approx(phi).margin(one_ball / 2));
+    }
+    json dense = fill_to(0.6, 0.001, 2);
+    dense["box"] = {{"min", {0, 0}}, {"max", {0.1, 0.1}}};
+    CHECK_THROWS_WITH(Simulation(json{{"dimension", 2}, {"bodies", {dense}}}),
+                      Contains("scene.bodies[0].solid_fraction") && Contains("(0, 0.50]") && Contains("jams"));
+    json both = dense;
+    both["count"] = 10;
+    CHECK_THROWS_WITH(Simulation(json{{"dimension", 2}, {"bodies", {both}}}), Contains("one of: count, solid_fraction"));
+}
