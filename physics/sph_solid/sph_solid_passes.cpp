@@ -64,7 +64,7 @@ struct SphSolidStress {
         solid::rest_density, solid::youngs_modulus, solid::poissons_ratio,
         plab::prop::number("artificial_stress", "artificial stress coefficient epsilon", "1", 0.3, 0.0, 1.0, 0,
          "epsilon of R = -epsilon sigma/rho^2 on tensile principal stresses (Monaghan 2000: 0.2-0.3); 0 off"),
-        plab::prop::choice("kernel_correction", "kernel gradient correction", kernel_correction_names, 1,
+        plab::prop::choice("kernel_correction", "kernel gradient correction", kernel_correction_names, 2,
          "where gradients are corrected by B = A^-1 (Chen 1999, Islam eq. 20), exact for linear fields also at free "
          "surfaces: none; velocity_gradient (l and the density rate); all (also the momentum equation, as "
          "sigma_i B_i/rho_i^2 + sigma_j B_j/rho_j^2)"),
