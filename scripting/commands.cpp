@@ -318,9 +318,35 @@ ClumpAction clump_action(const Node& n, const char* key, int dim) {
 
 } // namespace
 
+// `velocity_profile`: each component of the velocity an expression of the
+// ball's position x, y (, z) and the scene's variables, evaluated at each
+// selected ball when the command runs (a mode shape: Islam eq. 25).
+std::function<void(World&, const std::vector<int>&)> Simulation::velocity_profile(const Node& n, int dim) const {
+    n.expect_array();
+    if (n.size() != std::size_t(dim))
+        n.fail("needs " + std::to_string(dim) + " expressions, one per velocity component, got " + std::to_string(n.size()));
+    std::vector<std::shared_ptr<Expression>> components;
+    const std::vector<std::string> names = dim == 3 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y"};
+    for (std::size_t c = 0; c < n.size(); ++c)
+        components.push_back(std::make_shared<Expression>(n.at(c).string(), names, scene_variables(scene_), n.at(c).path()));
+    const std::string path = n.path();
+    return [components, dim, path](World& w, const std::vector<int>& sel) {
+        std::vector<double> at(std::size_t(dim), 0.0);
+        for (int i : sel) {
+            for (int c = 0; c < dim; ++c) at[std::size_t(c)] = w.bodies.position[i][c];
+            Vec v = Vec::Zero();
+            for (int c = 0; c < dim; ++c) v[c] = (*components[std::size_t(c)])(at);
+            if (!v.allFinite())
+                throw InputError(path, "is not finite at ball id " + std::to_string(w.bodies.id[i]) + " (x = " +
+                                           std::to_string(at[0]) + ", y = " + std::to_string(at[1]) + ")");
+            w.bodies.velocity[i] = v;
+        }
+    };
+}
+
 std::function<void(World&)> Simulation::load_set(const Node& n) {
-    n.allow_keys({"group", "id", "region", "wall", "velocity", "angular_velocity", "random_velocity", "fix", "free",
-                  "applied_force", "local_damping", "viscous_damping", "gravity"});
+    n.allow_keys({"group", "id", "region", "wall", "velocity", "angular_velocity", "random_velocity",
+                  "velocity_profile", "fix", "free", "applied_force", "local_damping", "viscous_damping", "gravity"});
     const int dim = world_->dim;
     std::vector<std::function<void(World&)>> actions;
     if (n.has("gravity")) {
@@ -366,6 +392,7 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
                 }
             });
         }
+        if (n.has("velocity_profile")) on_balls.push_back(velocity_profile(n.at("velocity_profile"), dim));
         if (n.has("fix")) {
             const std::uint8_t f = read_fixity(n.at("fix"));
             on_balls.push_back([f](World& w, const std::vector<int>& sel) { for (int i : sel) w.bodies.fixity[i] |= f; });
@@ -394,8 +421,8 @@ std::function<void(World&)> Simulation::load_set(const Node& n) {
         // on clumps: their own motion, or an error naming the key
         std::vector<ClumpAction> on_clumps;
         std::vector<std::string> not_for_clumps;
-        for (const char* k : {"velocity", "angular_velocity", "random_velocity", "fix", "free", "applied_force",
-                              "viscous_damping", "local_damping"}) {
+        for (const char* k : {"velocity", "angular_velocity", "random_velocity", "velocity_profile", "fix", "free",
+                              "applied_force", "viscous_damping", "local_damping"}) {
             if (!n.has(k)) continue;
             if (ClumpAction a = clump_action(n, k, dim)) on_clumps.push_back(std::move(a));
             else not_for_clumps.push_back(k);

@@ -172,6 +172,7 @@ private:
     void load_png_output(const Node& n);
     void load_commands(const Node& n);
     std::function<void(World&)> load_set(const Node& n);
+    std::function<void(World&, const std::vector<int>&)> velocity_profile(const Node& n, int dim) const;
     std::function<void(World&)> load_bond(const Node& n);
     // Balls chosen by group, id and/or region, evaluated when a command runs.
     std::function<std::vector<int>(const World&)> select(const Node& n, const World& w) const;

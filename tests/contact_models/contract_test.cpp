@@ -211,6 +211,33 @@ std::vector<std::unique_ptr<Model>> every_model(PluginHost& host) {
 
 double scale(const Vec& v) { return std::max(1e-12, v.norm()); }
 
+// The body fields a model reads, at the harness' plausible 1000, with the
+// tensors among them turned by R: a tensor is a run of fields named
+// *_xx, *_yy, *_zz, *_xy, *_yz, *_zx (symmetric) or *_xx, *_xy, *_xz, *_yx,
+// ... *_zz (full, row by row), turned as R T Rᵀ (the SPH solid's stress);
+// scalars stay. Without R: the fields as the harness has them.
+std::vector<std::vector<double>> body_fields_turned(const plab_contact_model_desc& d, const Eigen::Matrix3d& R) {
+    std::vector<std::vector<double>> f(d.fields_read_count, std::vector<double>(64, 1000.0));
+    const auto suffix = [&](uint32_t k) {
+        const std::string n = k < d.fields_read_count ? d.fields_read[k].name : "";
+        return n.size() > 3 ? n.substr(n.size() - 3) : std::string();
+    };
+    static const int sym[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}};
+    for (uint32_t k = 0; k < d.fields_read_count; ++k) {
+        if (suffix(k) != "_xx") continue;
+        const bool full = suffix(k + 1) == "_xy", symmetric = suffix(k + 1) == "_yy";
+        if (!full && !symmetric) continue;
+        Eigen::Matrix3d t = Eigen::Matrix3d::Constant(1000.0);  // (symmetric too)
+        const Eigen::Matrix3d turned = R * t * R.transpose();
+        for (int c = 0; c < (full ? 9 : 6); ++c) {
+            const double v = full ? turned(c / 3, c % 3) : turned(sym[c][0], sym[c][1]);
+            std::fill(f[k + c].begin(), f[k + c].end(), v);
+        }
+        k += full ? 8 : 5;
+    }
+    return f;
+}
+
 } // namespace
 
 TEST_CASE("contract: every model found has a well-formed description", "[contract]") {
@@ -279,8 +306,11 @@ TEST_CASE("contract: the force rotates with the contact (objectivity)", "[contra
                 ContactInput a = typical(*m->d, m->props, dim, rng);
                 for (int s = 0; s < 5; ++s) a.history = compute(*m->d, m->state, m->props, dim, 1e-5, {a})[0].history;
                 const ContactInput b = rotated(*m->d, a, R);
-                const auto fa = compute(*m->d, m->state, m->props, dim, 1e-5, {a})[0];
-                const auto fb = compute(*m->d, m->state, m->props, dim, 1e-5, {b})[0];
+                // tensor body fields (the SPH solid's stress) turn with the frame too
+                const auto fields_a = body_fields_turned(*m->d, Eigen::Matrix3d::Identity());
+                const auto fields_b = body_fields_turned(*m->d, R);
+                const auto fa = compute(*m->d, m->state, m->props, dim, 1e-5, {a}, &fields_a)[0];
+                const auto fb = compute(*m->d, m->state, m->props, dim, 1e-5, {b}, &fields_b)[0];
                 CHECK((R * fa.force - fb.force).norm() <= 1e-10 * scale(fa.force));
                 CHECK((R * fa.moment2 - fb.moment2).norm() <= 1e-10 * scale(fa.moment2) + 1e-300);
                 CHECK(fa.strain == Approx(fb.strain).epsilon(1e-10));
