@@ -86,7 +86,7 @@ Eigen::Matrix3d contact_stress_in(const World& x, const Box& box) {
                 if (!in) continue;
                 const Vec from = x.bodies.position[t.end1(k)];
                 const Vec l = t.with_wall() ? Vec(t.normal(k) * (t.gap(k) + t.end_radius(k, false)))
-                                            : Vec(x.bodies.position[t.end2(k)] - from);
+                                            : Vec(x.bodies.cell.image(from, x.bodies.position[t.end2(k)]) - from);  // (the minimum-image branch)
                 sum -= l * t.force(k).transpose();
             }
     double volume = 1;
