@@ -3,6 +3,7 @@
 // without a change to either model.
 #include "simulation.hpp"
 
+#include <plab/abi.h>
 #include <plab/sph/kernels.hpp>
 #include <plab_host/contacts.hpp>
 
@@ -88,4 +89,29 @@ TEST_CASE("a ring of bonded balls closed across a periodic boundary keeps its bo
         length += (w.bodies.cell.image(a, b) - a).norm();
     }
     CHECK(length == Approx(L).epsilon(1e-3));
+}
+
+TEST_CASE("XSPH smooths a shear wave across a periodic boundary as it does inside the cell", "[periodic][sph]") {
+    // v_x = U sin(2 pi y / L): the row at y and the row at y + L/2 move
+    // opposite ways, and so must their XSPH corrections, the rows that
+    // touch y = 0 (whose neighbours lie across the boundary) included
+    Simulation sim(periodic_fluid());
+    sim.set_quiet(true);
+    World& w = sim.world();
+    const double L = 20 * dp, U = 0.01;
+    for (std::size_t i = 0; i < w.bodies.size(); ++i)
+        w.bodies.velocity[i] = Vec(U * std::sin(2 * M_PI * w.bodies.position[i].y() / L), 0, 0);
+    sim.cycle(1);
+    const auto& dvx = w.fields.column(w.fields.index(PLAB_DRIFT_CORRECTION_X));
+    double row[20][20] = {};  // [row][column]
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+        const Vec x = w.bodies.cell.wrap(w.bodies.position[i]);
+        row[long(x.y() / dp) % 20][long(x.x() / dp) % 20] = dvx[i];
+    }
+    double largest = 0;
+    for (int r = 0; r < 20; ++r)
+        for (int c = 0; c < 20; ++c) largest = std::max(largest, std::fabs(row[r][c]));
+    REQUIRE(largest > 0);
+    for (int r : {0, 1, 2, 17, 18, 19})  // within the kernel's support of y = 0
+        for (int c = 0; c < 20; ++c) CHECK(std::fabs(row[r][c] + row[(r + 10) % 20][c]) <= 1e-9 * largest);
 }
