@@ -73,14 +73,16 @@ Measurement heap_angle(const Node& with, const World& w) {
 // centre to end 2's (ball–ball) or to the wall's surface (ball–wall: the
 // wall is outside the volume, which the walls then bound exactly: a
 // packing at rest between walls gives their stress). V is the box's
-// volume (2D: area x 1 m).
+// volume (2D: area x 1 m). In a periodic cell the branch is the minimum
+// image's and a contact point outside the cell counts at its image, so a
+// box equal to the cell gives the stress of the cell, every contact once.
 Eigen::Matrix3d contact_stress_in(const World& x, const Box& box) {
     Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
     for (std::size_t m = 0; m < x.model_count(); ++m)
         for (const ContactTable& t : {x.model(m).balls(), x.model(m).walls()})
             for (std::size_t k = 0; k < t.size(); ++k) {
                 if (!t.active(k)) continue;
-                const Vec c = t.point(k);
+                const Vec c = x.bodies.cell.wrap(t.point(k));  // (in a periodic cell: the point's image in it)
                 bool in = true;
                 for (int d = 0; d < x.dim; ++d) in &= c[d] >= box.lo[d] && c[d] <= box.hi[d];
                 if (!in) continue;

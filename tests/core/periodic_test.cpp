@@ -163,3 +163,31 @@ TEST_CASE("a periodic gas restarted from a checkpoint reaches the state of the u
     fs::remove(file);
     CHECK(state_hash(resumed->world()) == state_hash(whole->world()));
 }
+
+TEST_CASE("the contact stress of a compressed periodic lattice, over the cell, is -kn d / s with every contact once",
+          "[periodic][measurements]") {
+    // a square lattice of fixed balls (radius R, spacing s < 2R) filling a
+    // cell periodic in x and y: one x and one y contact per ball, a fifth of
+    // them across the boundary, each pushing kn d with branch s (the minimum
+    // image's): sigma_xx = sigma_yy = -kn d / s over the cell, xy zero
+    const double R = 0.001, s = 0.0019, L = 10 * s, d = 2 * R - s, expected = -1e5 * d / s;
+    json bodies = json::array();
+    for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < 10; ++j)
+            bodies.push_back({{"type", "ball"}, {"group", "grid"}, {"position", {(i + 0.5) * s, (j + 0.5) * s}},
+                              {"radius", R}, {"density", 2500}, {"fix", {"all"}}});
+    for (const char* component : {"xx", "yy", "xy"}) {
+        INFO(component);
+        json scene = periodic_scene(2, L, bodies);
+        scene["contact_models"][0]["properties"] = {{"kn", 1e5}};
+        scene["histories"] = {{"every", 1}, {"record", {{{"name", "s"}, {"quantity", "measure.contact_stress"},
+                                                         {"with", {{"min", {0, 0}}, {"max", {L, L}}, {"component", component}}}}}}};
+        Simulation sim(scene);
+        sim.set_quiet(true);
+        sim.cycle(1);
+        REQUIRE(active_contacts(sim.world()) == 200);
+        const double got = sim.history("s").back();
+        if (std::string(component) == "xy") CHECK(std::fabs(got) <= 1e-9 * std::fabs(expected));
+        else CHECK(got == Approx(expected).epsilon(1e-12));
+    }
+}
