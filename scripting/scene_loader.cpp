@@ -55,12 +55,13 @@ void Simulation::load(const Node& root) {
     world_ = std::make_unique<World>(dim, host_);
     if (root.has("domain")) {
         const Node d = root.at("domain");
-        d.allow_keys({"min", "max"});
+        d.allow_keys({"min", "max", "periodic"});
         domain_min_ = d.at("min").vec(dim);
         domain_max_ = d.at("max").vec(dim);
         for (int c = 0; c < dim; ++c)
             if (!(domain_min_[c] < domain_max_[c]))
                 d.at("max").fail("domain max must exceed min in every direction (component " + std::to_string(c) + ")");
+        if (d.has("periodic")) load_periodic_axes(d.at("periodic"));
         if (dim == 2) { domain_min_.z() = -kInf; domain_max_.z() = kInf; }
     }
     world_->gravity = root.vec_or("gravity", dim, Vec::Zero());
@@ -85,6 +86,8 @@ void Simulation::load(const Node& root) {
     if (root.has("histories")) load_histories(root.at("histories"));
     if (root.has("output")) load_output(root.at("output"));
     if (root.has("commands")) load_commands(root.at("commands"));
+    if (world_->bodies.cell.any() && world_->clumps.size())
+        root.at("domain").at("periodic").fail("a periodic cell with clumps is not supported yet (a clump's pebbles would be wrapped apart); valid: no clumps, or no periodic axis");
 }
 
 void Simulation::load_plugins(const Node& n) {
@@ -110,12 +113,29 @@ void Simulation::load_plugins(const Node& n) {
     }
 }
 
+// domain.periodic: the axes along which the domain is a periodic cell
+// (plab_host/bodies.hpp, PeriodicCell), each named once.
+void Simulation::load_periodic_axes(const Node& n) {
+    n.expect_array();
+    PeriodicCell& cell = world_->bodies.cell;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+        const int c = world_->dim == 3 ? int(n.at(i).choice({"x", "y", "z"}).front() - 'x')
+                                       : int(n.at(i).choice({"x", "y"}).front() - 'x');
+        if (cell.periodic[c]) n.at(i).fail("axis listed twice; valid: each of x, y" + std::string(world_->dim == 3 ? ", z" : "") + " at most once");
+        cell.periodic[c] = true;
+    }
+    cell.lo = domain_min_;
+    cell.hi = domain_max_;
+    if (world_->dim == 2) { cell.lo.z() = 0; cell.hi.z() = 1; }
+}
+
 void Simulation::check_domain(const std::string& where, std::size_t first) const {
     const Bodies& b = world_->bodies;
     for (std::size_t i = first; i < b.size(); ++i) {
         const Vec& p = b.position[i];
         for (int c = 0; c < world_->dim; ++c)
-            if (p[c] - b.radius[i] < domain_min_[c] || p[c] + b.radius[i] > domain_max_[c]) {
+            if (b.cell.periodic[c] ? (p[c] < domain_min_[c] || p[c] >= domain_max_[c])  // (a ball may straddle the boundary)
+                                   : (p[c] - b.radius[i] < domain_min_[c] || p[c] + b.radius[i] > domain_max_[c])) {
                 std::ostringstream s;
                 s << "ball at " << p.head(world_->dim).transpose() << " (radius " << b.radius[i]
                   << ") lies outside the domain [" << domain_min_.head(world_->dim).transpose() << "] .. ["

@@ -228,6 +228,7 @@ private:
     std::clock_t cpu_started_ = 0;
     bool finished_ = false;  // run() ended, not stopped by a signal (summary.json: "finished")
     void check_domain(const std::string& where, std::size_t first) const;
+    void load_periodic_axes(const Node& n);
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
     GeneratorLimits limits_;
     std::vector<Servo> servos_;  // scene.servos: walls driven to a target stress before each step

@@ -270,7 +270,8 @@ struct SphWallPressure {
             if (v.group[w] != boundary_ || v.group[f] == boundary_) continue;  // one wall ball, one fluid ball
             const double* xw = v.position + 3 * w;
             const double* xf = v.position + 3 * f;
-            const double d[3] = {xw[0] - xf[0], xw[1] - xf[1], xw[2] - xf[2]};
+            double d[3] = {xw[0] - xf[0], xw[1] - xf[1], xw[2] - xf[2]};
+            plab::minimum_image(v, d);  // (a pair across a periodic boundary)
             const double kernel_value = W.value(std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
             double g_dot_d = g_[0] * d[0] + g_[1] * d[1] + g_[2] * d[2];
             if (accelerating_)  // (g - a_w)·(x_w - x_f), Islam eq. 10
@@ -550,7 +551,8 @@ private:
     static double distance(const plab_pass_view& v, int32_t i, int32_t j) {
         const double* xi = v.position + 3 * i;
         const double* xj = v.position + 3 * j;
-        const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+        double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+        plab::minimum_image(v, d);  // (a pair across a periodic boundary)
         return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     }
 
@@ -609,7 +611,8 @@ struct SphXsph {
             if (v.group[i] == boundary_ || v.group[j] == boundary_) continue;
             const double* xi = v.position + 3 * i;
             const double* xj = v.position + 3 * j;
-            const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+            double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+            plab::minimum_image(v, d);  // (a pair across a periodic boundary)
             const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             if (r2 >= support2) continue;
             const double s = epsilon_ * W.value(std::sqrt(r2)) / (0.5 * (rho[i] + rho[j]));

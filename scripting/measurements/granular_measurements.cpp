@@ -129,17 +129,20 @@ RegionNow region_now(const World& x, const StressRegion& r) {
 // tension positive, with f_c the force on end 2 and l_c the branch from end
 // 1's centre to end 2's (ball–ball) or to the wall's surface (ball–wall:
 // the wall is outside the volume, which the walls then bound exactly: a
-// packing at rest between walls gives their stress).
+// packing at rest between walls gives their stress). In a periodic cell
+// the branch is the minimum image's and a contact point outside the cell
+// counts at its image, so a box equal to the cell gives the stress of the
+// cell, every contact once.
 Eigen::Matrix3d contact_stress_in(const World& x, const StressRegion& region) {
     const RegionNow now = region_now(x, region);
     Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
     for (std::size_t m = 0; m < x.model_count(); ++m)
         for (const ContactTable& t : {x.model(m).balls(), x.model(m).walls()})
             for (std::size_t k = 0; k < t.size(); ++k) {
-                if (!t.active(k) || !now.contains(t.point(k))) continue;
+                if (!t.active(k) || !now.contains(x.bodies.cell.wrap(t.point(k)))) continue;
                 const Vec from = x.bodies.position[t.end1(k)];
                 const Vec l = t.with_wall() ? Vec(t.normal(k) * (t.gap(k) + t.end_radius(k, false)))
-                                            : Vec(x.bodies.position[t.end2(k)] - from);
+                                            : Vec(x.bodies.cell.image(from, x.bodies.position[t.end2(k)]) - from);  // (the minimum-image branch)
                 sum -= l * t.force(k).transpose();
             }
     return sum / now.volume;

@@ -353,14 +353,15 @@ TEST_CASE("a checkpoint that cannot load says why: foreign, newer, damaged, trun
 namespace {
 
 // The checkpoint as format 2 wrote it: no header CRC, sections without
-// lengths and CRCs, and none of the sections of later formats (clumps, flows).
+// lengths and CRCs, and none of the sections of later formats (clumps, flows, periodic_cell).
 std::string as_format_2(const std::string& bytes) {
     std::string out = bytes.substr(0, 16);
     const std::uint32_t two = 2;
     std::memcpy(&out[8], &two, sizeof two);
     for (std::size_t at = 20; at < bytes.size();) {
         const std::size_t name = 8 + u64_at(bytes, at), length = u64_at(bytes, at + name);
-        const bool later = bytes.compare(at + 8, name - 8, "clumps") == 0 || bytes.compare(at + 8, name - 8, "flows") == 0;
+        bool later = false;
+        for (const char* s : {"clumps", "flows", "periodic_cell"}) later |= bytes.compare(at + 8, name - 8, s) == 0;
         if (!later) out += bytes.substr(at, name) + bytes.substr(at + name + 8, length);
         at += name + 8 + length + 4;
     }

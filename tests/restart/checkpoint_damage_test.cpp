@@ -51,7 +51,7 @@ struct Region {
 std::vector<Region> regions_of(const std::string& bytes) {
     static const char* names[] = {"plugins", "scene",  "world",       "assignment", "bodies",   "walls",
                                   "fields",  "contacts", "detection", "passes",     "bond_breaks", "rng",
-                                  "stability", "clumps", "commands", "outputs", "flows", "end"};
+                                  "stability", "clumps", "periodic_cell", "commands", "outputs", "flows", "end"};
     std::vector<Region> out{{"header", 0, 0}};
     std::size_t from = 0;
     for (const char* name : names) {

@@ -41,7 +41,7 @@ extern "C" {
 #endif
 
 #define PLAB_ABI_MAJOR 2u
-#define PLAB_ABI_MINOR 3u
+#define PLAB_ABI_MINOR 4u
 /* what plab_plugin_abi_version() returns: major << 16 | minor (ABI 1
  * returned its plain version number, 1 to 7, whose major reads as 0) */
 #define PLAB_ABI_VERSION ((PLAB_ABI_MAJOR << 16) | PLAB_ABI_MINOR)
@@ -369,6 +369,13 @@ typedef struct plab_pass_view {
      * positions moved): then compute it from `position`. Read it only when
      * not NULL. */
     const double* contact_distance;
+    /* ABI 2.4: the periodic cell's length along each axis, m (3 doubles;
+     * 0 along an axis that is not periodic); NULL when no axis is. A pass
+     * that takes the vector between two contact ends from `position` takes
+     * its minimum image: d -= L round(d / L) along each periodic axis
+     * (plab::minimum_image, pass.hpp). Read it only when `size` says the
+     * host wrote it. */
+    const double* periodic_length;
 } plab_pass_view;
 
 /* Return codes of plab_pass_desc.run: 0 success; PLAB_PASS_UNSTABLE the

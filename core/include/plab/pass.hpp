@@ -26,6 +26,8 @@
 #include <plab/contact_model.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -108,6 +110,17 @@ template <class P> int add_pass(const plab_registrar* r) {
         if (rc == 0) return r->register_pass_state(r->host, &hooks);
     }
     return rc;
+}
+
+// d, the vector between two bodies of a pass view from their positions,
+// turned into its minimum image in the view's periodic cell (no change
+// without one, or from a host older than ABI 2.4).
+inline void minimum_image(const plab_pass_view& v, double d[3]) {
+    if (v.size < offsetof(plab_pass_view, periodic_length) + sizeof(v.periodic_length) || !v.periodic_length) return;
+    for (int c = 0; c < 3; ++c) {
+        const double L = v.periodic_length[c];
+        if (L > 0) d[c] -= L * std::nearbyint(d[c] / L);
+    }
 }
 
 } // namespace plab

@@ -4,6 +4,8 @@
 
 #include <plab_host/types.hpp>
 
+#include <array>
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -28,8 +30,40 @@ struct BallSpec {
 constexpr std::size_t kBodyBlock = 1024;
 inline std::size_t body_blocks(std::size_t bodies) { return (bodies + kBodyBlock - 1) / kBodyBlock; }
 
+// A periodic cell (LAMMPS's periodic box, PFC's periodic space): along a
+// periodic axis a ball that leaves [lo, hi) comes back on the other side
+// (positions wrapped at each rebuild of the lists), and a pair is seen at
+// its minimum image. The cell is at least twice the largest candidate
+// cut-off wide along such an axis, so the minimum image is the only one in
+// range and contacts stay keyed by the ids of their ends alone.
+struct PeriodicCell {
+    std::array<bool, 3> periodic{{false, false, false}};
+    Vec lo = Vec::Zero(), hi = Vec::Zero();
+    bool any() const { return periodic[0] || periodic[1] || periodic[2]; }
+    double length(int c) const { return hi[c] - lo[c]; }
+    // xj moved by whole cell lengths along the periodic axes to the image
+    // nearest xi (xj itself along the others).
+    Vec image(const Vec& xi, const Vec& xj) const {
+        Vec y = xj;
+        for (int c = 0; c < 3; ++c)
+            if (periodic[c]) y[c] -= length(c) * std::nearbyint((xj[c] - xi[c]) / length(c));
+        return y;
+    }
+    // x back inside [lo, hi) along the periodic axes.
+    Vec wrap(const Vec& x) const {
+        Vec y = x;
+        for (int c = 0; c < 3; ++c) {
+            if (!periodic[c]) continue;
+            y[c] -= length(c) * std::floor((x[c] - lo[c]) / length(c));
+            if (y[c] >= hi[c] || y[c] < lo[c]) y[c] = lo[c];  // (round-off at the upper face)
+        }
+        return y;
+    }
+};
+
 struct Bodies {
     int dim = 3;
+    PeriodicCell cell;  // the space the balls live in (no periodic axis: unbounded)
     std::vector<BodyId> id;
     std::vector<Vec> position, velocity, angular_velocity;
     std::vector<Vec> force, moment;                  // total, after the force pass

@@ -66,6 +66,7 @@ void NeighbourLists::find_ball_pairs(const Bodies& bodies, const AssignmentTable
     auto& out = ball_pairs_;
     const int dim = bodies.dim;
     const std::size_t n = bodies.size();
+    if (bodies.cell.any()) return find_ball_pairs_periodic(bodies, table, instances, parallel_min);
     if (n < 2 || instances.empty()) return;
     const double s = effective_skin(bodies);
     double r_max = 0;
@@ -151,6 +152,131 @@ void NeighbourLists::find_ball_pairs(const Bodies& bodies, const AssignmentTable
         std::size_t total = 0;
         for (const auto& lists : block_pairs) total += lists[m].size();
         clear_for(out[m], total);  // (out[m] is empty: find_pairs() cleared it)
+        for (const auto& lists : block_pairs) out[m].insert(out[m].end(), lists[m].begin(), lists[m].end());
+    }
+}
+
+namespace {
+
+// The neighbour cells of cell x along one axis of n cells: x - 1, x, x + 1
+// clamped to the grid, or, along a periodic axis, taken modulo n (each
+// once: a periodic axis of one or two cells has fewer than three).
+int neighbour_cells(long x, long n, bool periodic, long out[3]) {
+    int count = 0;
+    for (long o = -1; o <= 1; ++o) {
+        long c = x + o;
+        if (periodic) c = (c % n + n) % n;
+        else if (c < 0 || c >= n) continue;
+        bool seen = false;
+        for (int k = 0; k < count; ++k) seen |= out[k] == c;
+        if (!seen) out[count++] = c;
+    }
+    return count;
+}
+
+} // namespace
+
+// Refuses a periodic cell narrower than twice the largest candidate
+// cut-off along a periodic axis: a pair would then be in range at two
+// images, and the minimum image would no longer be the contact.
+void check_periodic_cell(const PeriodicCell& cell, int dim, double cut) {
+    static const char* axis[] = {"x", "y", "z"};
+    for (int c = 0; c < dim; ++c) {
+        if (!cell.periodic[c] || cell.length(c) >= 2.0 * cut) continue;
+        throw InputError("scene.domain.periodic", "the periodic cell (domain.max - domain.min) is " +
+                         std::to_string(cell.length(c)) + " m wide along " + axis[c] +
+                         "; valid: at least 2 x (largest activity range + skin) = " + std::to_string(2.0 * cut) +
+                         " m (two of the largest balls, the model's range and the skin)");
+    }
+}
+
+// find_ball_pairs() in a periodic cell: the grid spans the cell exactly
+// along a periodic axis (positions were wrapped into it at this rebuild),
+// its cells wrap around, and a pair's distance is its minimum image's.
+void NeighbourLists::find_ball_pairs_periodic(const Bodies& bodies, const AssignmentTable& table,
+                                              const Instances& instances, std::size_t parallel_min) {
+    auto& out = ball_pairs_;
+    const int dim = bodies.dim;
+    const std::size_t n = bodies.size();
+    const PeriodicCell& pc = bodies.cell;
+    if (n == 0 || instances.empty()) return;
+    const double s = effective_skin(bodies);
+    double r_max = 0;
+    for (double r : bodies.radius) r_max = std::max(r_max, r);
+    double cut_max = 0;
+    for (const auto& inst : instances) cut_max = std::max(cut_max, cutoff(*inst, r_max, r_max, s));
+    if (cut_max <= 0) return;
+    check_periodic_cell(pc, dim, cut_max);
+    if (n < 2) return;
+    Vec lo = bodies.position[0], hi = lo;
+    for (const Vec& p : bodies.position) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
+    if (!(hi - lo).allFinite()) throw RunError("non-finite ball positions in the periodic cell");
+    std::array<long, 3> dims{1, 1, 1};
+    Vec size = Vec::Constant(cut_max);
+    for (double grow = 1;; grow *= 1.5) {
+        double total = 1;
+        for (int c = 0; c < dim; ++c) {
+            if (pc.periodic[c]) { lo[c] = pc.lo[c]; hi[c] = pc.hi[c]; }
+            const double extent = hi[c] - lo[c];
+            dims[c] = pc.periodic[c] ? std::max(1L, long(extent / (grow * cut_max)))
+                                     : std::max(1L, long(extent / (grow * cut_max)) + 1);
+            size[c] = pc.periodic[c] ? extent / double(dims[c]) : grow * cut_max;
+            total *= double(dims[c]);
+        }
+        if (total <= double(8 * n + 64)) break;
+    }
+    auto cell_at = [&](const Vec& p, int c) { return std::max(0L, std::min(dims[c] - 1, long((p[c] - lo[c]) / size[c]))); };
+    const long n_cells = dims[0] * dims[1] * dims[2];
+    std::vector<std::int32_t> start(n_cells + 1, 0), items(n), home(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec& p = bodies.position[i];
+        home[i] = std::int32_t((( dim == 3 ? cell_at(p, 2) : 0) * dims[1] + cell_at(p, 1)) * dims[0] + cell_at(p, 0));
+        ++start[home[i] + 1];
+    }
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    {
+        std::vector<std::int32_t> next(start.begin(), start.end() - 1);
+        for (std::size_t i = 0; i < n; ++i) items[next[home[i]]++] = std::int32_t(i);
+    }
+    const int ng = table.group_count();
+    const int* cmat = table.table().data();
+    constexpr std::size_t block = 1024;
+    const std::size_t n_blocks = (n + block - 1) / block;
+    auto& block_pairs = block_pairs_;
+    block_pairs.resize(n_blocks);
+#pragma omp parallel for schedule(dynamic) if (n >= parallel_min)
+    for (std::size_t b = 0; b < n_blocks; ++b) {
+        auto& lists = block_pairs[b];
+        lists.resize(out.size());
+        for (auto& l : lists) l.clear();
+        const std::int32_t* clump = bodies.clump.size() == n ? bodies.clump.data() : nullptr;
+        for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
+            const Vec& pi = bodies.position[i];
+            long xs[3], ys[3], zs[3] = {0, 0, 0};
+            const int nx = neighbour_cells(cell_at(pi, 0), dims[0], pc.periodic[0], xs);
+            const int ny = neighbour_cells(cell_at(pi, 1), dims[1], pc.periodic[1], ys);
+            const int nz = dim == 3 ? neighbour_cells(cell_at(pi, 2), dims[2], pc.periodic[2], zs) : 1;
+            for (int z = 0; z < nz; ++z)
+                for (int y = 0; y < ny; ++y)
+                    for (int x = 0; x < nx; ++x) {
+                        const long c = (zs[z] * dims[1] + ys[y]) * dims[0] + xs[x];
+                        for (std::int32_t t = start[c]; t < start[c + 1]; ++t) {
+                            const std::int32_t j = items[t];
+                            if (std::size_t(j) <= i) continue;
+                            const int inst = cmat[bodies.group[i] * ng + bodies.group[j]];
+                            if (inst < 0) continue;
+                            if (clump && clump[i] >= 0 && clump[i] == clump[j]) continue;
+                            const double cut = cutoff(*instances[inst], bodies.radius[i], bodies.radius[j], s);
+                            if ((pc.image(pi, bodies.position[j]) - pi).squaredNorm() <= cut * cut)
+                                lists[inst].push_back({std::int32_t(i), j});
+                        }
+                    }
+        }
+    }
+    for (std::size_t m = 0; m < out.size(); ++m) {
+        std::size_t total = 0;
+        for (const auto& lists : block_pairs) total += lists[m].size();
+        clear_for(out[m], total);
         for (const auto& lists : block_pairs) out[m].insert(out[m].end(), lists[m].begin(), lists[m].end());
     }
 }

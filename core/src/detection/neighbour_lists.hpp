@@ -17,6 +17,10 @@
 
 namespace plab {
 
+// Throws an InputError naming domain.min/max when a periodic axis of the
+// cell is narrower than 2 x cut (the largest candidate cut-off, centre to centre).
+void check_periodic_cell(const PeriodicCell& cell, int dim, double cut);
+
 class NeighbourLists {
 public:
     double skin = -1;  // m; < 0: a quarter of the mean radius
@@ -59,6 +63,8 @@ private:
     std::vector<std::vector<PairList>> block_pairs_;  // [block of bodies][instance]
     void find_ball_pairs(const Bodies& bodies, const AssignmentTable& table, const Instances& instances,
                          std::size_t parallel_min, std::uint64_t step);
+    void find_ball_pairs_periodic(const Bodies& bodies, const AssignmentTable& table, const Instances& instances,
+                                  std::size_t parallel_min);
     void find_wall_pairs(const Bodies& bodies, const Walls& walls, const AssignmentTable& table,
                          const Instances& instances);
 };

@@ -17,14 +17,15 @@ namespace {
 // pack_centre_rows()'s loop over the rows in range, for 2D or 3D (a 2D
 // world's positions and velocities have z = 0: the normal and the relative
 // velocity in the plane, with centre_normal()'s arithmetic).
-template <int Dim>
+template <int Dim, bool Periodic>
 bool pack_centre_loop(const Bodies& B, const ContactSet& s, const OptionalInputs& optional, double max_overlap,
                       std::size_t n_active, DenseBatch& d) {
     // (no contact point: readers recompute it, ContactTable::point; no spin)
     return pack_rows(B, s, optional, max_overlap, n_active, d,
                      [&](std::size_t a, std::int32_t i, std::int32_t j, double, double dist, double) {
+                         const Vec xj = seen_from<Periodic>(B, i, j);  // (a copy the compiler drops without a cell)
                          if (Dim == 2) {
-                             const PlaneNormal n = centre_normal_2d(B.position[i], B.position[j], dist);
+                             const PlaneNormal n = centre_normal_2d(B.position[i], xj, dist);
                              d.normal[3 * a] = n.x;
                              d.normal[3 * a + 1] = n.y;
                              d.normal[3 * a + 2] = 0.0;
@@ -32,7 +33,7 @@ bool pack_centre_loop(const Bodies& B, const ContactSet& s, const OptionalInputs
                              d.rel_velocity[3 * a + 1] = B.velocity[j].y() - B.velocity[i].y();
                              d.rel_velocity[3 * a + 2] = 0.0;
                          } else {
-                             put(d.normal, a, centre_normal(B.position[i], B.position[j], dist));
+                             put(d.normal, a, centre_normal(B.position[i], xj, dist));
                              put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
                          }
                          return Vec(Vec::Zero());
@@ -64,8 +65,11 @@ bool ForcePipeline::pack_centre_rows(const ModelInstance& inst, std::uint32_t si
     // reads the masses, not the effective mass and radius (two divisions)
     d.poison_unread(inst);
     const OptionalInputs optional(inst);
-    const bool exceeded = in_.dim == 2 ? pack_centre_loop<2>(B, s, optional, inst.max_overlap, n_active, d)
-                                   : pack_centre_loop<3>(B, s, optional, inst.max_overlap, n_active, d);
+    const double mo = inst.max_overlap;
+    const bool exceeded = B.cell.any() ? (in_.dim == 2 ? pack_centre_loop<2, true>(B, s, optional, mo, n_active, d)
+                                                       : pack_centre_loop<3, true>(B, s, optional, mo, n_active, d))
+                                       : (in_.dim == 2 ? pack_centre_loop<2, false>(B, s, optional, mo, n_active, d)
+                                                       : pack_centre_loop<3, false>(B, s, optional, mo, n_active, d));
     gather_history(d.history.data(), s.history.data(), d.rows, n_active, stride);
     d.count = std::uint32_t(n_active);
     // only the outputs the host reads start from zero (dt limit: no limit)

@@ -103,8 +103,9 @@ bool ball_wall_geometry(const Bodies& B, const Walls& walls, const ModelInstance
 // listing the active rows without a branch per row, then the full geometry
 // of the listed rows only. The in-range flags of a Verlet list follow no
 // pattern, so a branch per row would be mispredicted about half the time.
-bool ball_ball_geometry(const Bodies& B, const ModelInstance& inst, ContactSet& s, std::size_t begin,
-                        std::size_t end) {
+namespace {
+template <bool Periodic>
+bool ball_ball_rows(const Bodies& B, const ModelInstance& inst, ContactSet& s, std::size_t begin, std::size_t end) {
     const RangeTest in_range(inst);
     std::uint32_t rows[kContactBatch];
     bool exceeded = false;
@@ -112,7 +113,7 @@ bool ball_ball_geometry(const Bodies& B, const ModelInstance& inst, ContactSet& 
         const std::size_t k1 = std::min(end, k0 + kContactBatch);
         for (std::size_t k = k0; k < k1; ++k) {
             const std::int32_t i = s.end1[k], j = s.end2[k];
-            const double dist = (B.position[j] - B.position[i]).norm();
+            const double dist = (seen_from<Periodic>(B, i, j) - B.position[i]).norm();
             const double gap = dist - s.radius1[k] - s.radius2[k];
             s.gap[k] = gap;
             s.distance[k] = dist;
@@ -122,7 +123,8 @@ bool ball_ball_geometry(const Bodies& B, const ModelInstance& inst, ContactSet& 
         for (std::size_t a = 0; a < n_active; ++a) {
             const std::size_t k = rows[a];
             const double ri = s.radius1[k], rj = s.radius2[k], gap = s.gap[k];
-            const PairKinematics p = ball_pair_kinematics(B, s.end1[k], s.end2[k], ri, s.distance[k], gap);
+            const std::int32_t i = s.end1[k], j = s.end2[k];
+            const PairKinematics p = ball_pair_kinematics(B, i, j, seen_from<Periodic>(B, i, j), ri, s.distance[k], gap);
             put(s.normal, k, p.normal);
             put(s.point, k, p.point);
             put(s.rel_velocity, k, p.rel_velocity);
@@ -132,6 +134,12 @@ bool ball_ball_geometry(const Bodies& B, const ModelInstance& inst, ContactSet& 
         }
     }
     return exceeded;
+}
+} // namespace
+
+bool ball_ball_geometry(const Bodies& B, const ModelInstance& inst, ContactSet& s, std::size_t begin,
+                        std::size_t end) {
+    return B.cell.any() ? ball_ball_rows<true>(B, inst, s, begin, end) : ball_ball_rows<false>(B, inst, s, begin, end);
 }
 
 // A ball touching a wall along several facets. An edge/vertex contact is

@@ -75,19 +75,37 @@ inline PlaneNormal centre_normal_2d(const Vec& xi, const Vec& xj, double dist) {
 inline Vec ball_contact_point(const Vec& xi, const Vec& normal, double ri, double gap) {
     return xi + normal * (ri + 0.5 * gap);
 }
-inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
-                                           double gap) {
+// Ball j's centre as ball i sees it: its minimum image in a periodic cell
+// (Periodic, chosen once per batch: no test per row without one).
+template <bool Periodic>
+inline Vec seen_from(const Bodies& B, std::int32_t i, std::int32_t j) {
+    if constexpr (Periodic) return B.cell.image(B.position[i], B.position[j]);
+    else return B.position[j];
+}
+// (xj: ball j's centre, or its minimum image in a periodic cell)
+inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, const Vec& xj, double ri,
+                                           double dist, double gap) {
     const Vec& xi = B.position[i];
     PairKinematics p;
-    p.normal = centre_normal(xi, B.position[j], dist);
+    p.normal = centre_normal(xi, xj, dist);
     p.point = ball_contact_point(xi, p.normal, ri, gap);
     p.arm1 = p.point - xi;
-    p.arm2 = p.point - B.position[j];
+    p.arm2 = p.point - xj;
     const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(p.arm2);
     const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(p.arm1);
     p.rel_velocity = vj - vi;
     p.rel_angular_velocity = B.angular_velocity[j] - B.angular_velocity[i];
     return p;
+}
+inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
+                                           double gap) {
+    return ball_pair_kinematics(B, i, j, B.position[j], ri, dist, gap);
+}
+// End 2's centre of ball–ball row k as end 1 sees it (the minimum image in
+// a periodic cell): for the readers, where a test per row costs nothing.
+inline Vec row_end2_centre(const Bodies& B, const ContactSet& s, std::size_t k) {
+    const Vec& xj = B.position[s.end2[k]];
+    return B.cell.any() ? B.cell.image(B.position[s.end1[k]], xj) : xj;
 }
 
 // A row's gap, normal and contact point at the last force pass, for the
@@ -97,12 +115,12 @@ inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std:
 // from its columns.
 inline double row_gap(const Bodies& B, const ContactSet& s, std::size_t k) {
     if (!s.packed) return s.gap[k];
-    const double dist = (B.position[s.end2[k]] - B.position[s.end1[k]]).norm();
+    const double dist = (row_end2_centre(B, s, k) - B.position[s.end1[k]]).norm();
     return surface_gap(dist, B.radius[s.end1[k]], B.radius[s.end2[k]]);
 }
 inline Vec row_normal(const Bodies& B, const ContactSet& s, std::size_t k) {
     if (!s.packed) return Vec(&s.normal[3 * k]);
-    const Vec &xi = B.position[s.end1[k]], &xj = B.position[s.end2[k]];
+    const Vec &xi = B.position[s.end1[k]], xj = row_end2_centre(B, s, k);
     return centre_normal(xi, xj, (xj - xi).norm());
 }
 inline Vec row_point(const Bodies& B, const ContactSet& s, std::size_t k) {

@@ -32,6 +32,7 @@ struct RangeRows {
     double* gap_col;  // null: the set keeps no gaps (packed)
     std::uint8_t *active_col, *live;
     bool plane;  // a 2D world: every z is zero, so is its square
+    const PeriodicCell* cell;  // null: no periodic axis
 };
 // In two loops: the geometry and flags of every row first, then the lists.
 // In one loop the list stores waited for their addresses, the counts, which
@@ -48,7 +49,13 @@ std::size_t test_rows(const RangeRows& c, const RangeTest& in_range, std::size_t
     // squared distances first, then their square roots in a loop of their
     // own: there they are taken a vector at a time (one vsqrtpd for 8 rows
     // on AVX-512), not one row at a time behind each row's gathers
-    if (c.plane)  // (the same bits: the square of z adds zero)
+    if (c.cell)  // a periodic cell: the minimum image's distance
+        for (std::size_t r = 0; r < n; ++r) {
+            const std::size_t k = begin + r;
+            const Vec& a = c.x[c.end1[k]];
+            dist_of[r] = (c.cell->image(a, c.x[c.end2[k]]) - a).squaredNorm();
+        }
+    else if (c.plane)  // (the same bits: the square of z adds zero)
         for (std::size_t r = 0; r < n; ++r) {
             const std::size_t k = begin + r;
             const Vec &a = c.x[c.end1[k]], &b = c.x[c.end2[k]];
@@ -99,7 +106,7 @@ std::size_t ForcePipeline::range_test_rows(const ModelInstance& inst, std::uint3
     // the compiler would otherwise reload every column's address per row
     const RangeRows c{s.end1.data(), s.end2.data(), in_.bodies.radius.data(), s.history.data(),
                       in_.bodies.position.data(), s.packed ? nullptr : s.gap.data(), s.active.data(), packed[si].live.data(),
-                      in_.dim == 2};
+                      in_.dim == 2, in_.bodies.cell.any() ? &in_.bodies.cell : nullptr};
     std::uint32_t idle[kContactBatch];
     double unused[kContactBatch];  // where an output the caller does not take goes
     if (!distance) distance = unused;
@@ -122,10 +129,11 @@ namespace {
 // velocities have z = 0 and its spins only a z component (its implicit
 // fixity), so only the other components are worked out, with the same
 // arithmetic (w x a in x is 0*0 - w_z a_y, in y w_z a_x - 0*0).
-inline PairKinematics ball_pair_kinematics_2d(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
-                                              double gap) {
-    const double xi = B.position[i].x(), yi = B.position[i].y(), xj = B.position[j].x(), yj = B.position[j].y();
-    const PlaneNormal n = centre_normal_2d(B.position[i], B.position[j], dist);
+// (xj_: ball j's centre, or its minimum image)
+inline PairKinematics ball_pair_kinematics_2d(const Bodies& B, std::int32_t i, std::int32_t j, const Vec& xj_, double ri,
+                                              double dist, double gap) {
+    const double xi = B.position[i].x(), yi = B.position[i].y(), xj = xj_.x(), yj = xj_.y();
+    const PlaneNormal n = centre_normal_2d(B.position[i], xj_, dist);
     const double nx = n.x, ny = n.y;
     const double reach = ri + 0.5 * gap;
     const double px = xi + nx * reach, py = yi + ny * reach;
@@ -144,13 +152,14 @@ inline PairKinematics ball_pair_kinematics_2d(const Bodies& B, std::int32_t i, s
 }
 
 // pack_ball_rows()'s loop over the rows in range, for 2D or 3D.
-template <int Dim>
+template <int Dim, bool Periodic>
 bool pack_rows_in_range(const Bodies& B, const ContactSet& s, const OptionalInputs& optional, double max_overlap,
                         std::size_t n_active, DenseBatch& d) {
     return pack_rows(B, s, optional, max_overlap, n_active, d,
                      [&](std::size_t a, std::int32_t i, std::int32_t j, double ri, double dist, double gap) {
-                         const PairKinematics p = Dim == 2 ? ball_pair_kinematics_2d(B, i, j, ri, dist, gap)
-                                                           : ball_pair_kinematics(B, i, j, ri, dist, gap);
+                         const Vec xj = seen_from<Periodic>(B, i, j);
+                         const PairKinematics p = Dim == 2 ? ball_pair_kinematics_2d(B, i, j, xj, ri, dist, gap)
+                                                           : ball_pair_kinematics(B, i, j, xj, ri, dist, gap);
                          put(d.normal, a, p.normal);
                          if (!s.packed) put(d.point, a, p.point);
                          put(d.arm1, a, p.arm1);
@@ -174,8 +183,13 @@ bool ForcePipeline::pack_ball_rows(const ModelInstance& inst, std::uint32_t si, 
     // only the optional inputs the model reads (abi.h, PLAB_IO_*)
     d.poison_unread(inst);
     const OptionalInputs optional(inst);
-    const bool exceeded = in_.dim == 2 ? pack_rows_in_range<2>(in_.bodies, s, optional, inst.max_overlap, n_active, d)
-                                   : pack_rows_in_range<3>(in_.bodies, s, optional, inst.max_overlap, n_active, d);
+    const auto& B = in_.bodies;
+    const double mo = inst.max_overlap;
+    const bool exceeded =
+        B.cell.any() ? (in_.dim == 2 ? pack_rows_in_range<2, true>(B, s, optional, mo, n_active, d)
+                                     : pack_rows_in_range<3, true>(B, s, optional, mo, n_active, d))
+                     : (in_.dim == 2 ? pack_rows_in_range<2, false>(B, s, optional, mo, n_active, d)
+                                     : pack_rows_in_range<3, false>(B, s, optional, mo, n_active, d));
     gather_history(d.history.data(), s.history.data(), d.row, n_active, stride);
     d.count = std::uint32_t(n_active);
     // the outputs a model adds to start from zero (dt limit: no limit); the

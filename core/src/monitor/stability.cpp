@@ -84,6 +84,9 @@ void InstabilityDetector::measure_baseline(const Energies& e, const Bodies& bodi
         }
     }
     if (dim == 2) { b.lo.z() = -kInf; b.hi.z() = kInf; }
+    // a ball leaves a periodic cell only to come back on the other side
+    for (int c = 0; c < 3; ++c)
+        if (bodies.cell.periodic[c]) { b.lo[c] = -kInf; b.hi[c] = kInf; }
 }
 
 // The drift flags a position outside the domain or not finite while it moves

@@ -29,7 +29,8 @@ void StiffnessSums::sum(const Bodies& bodies, const BodyContacts& contacts, cons
                     const double arm = row_end_radius(bodies, s, k, en.end2()) + 0.5 * row_gap(bodies, s, k);
                     arm2 = arm * arm;
                 } else {
-                    arm2 = (Vec(&s.point[3 * k]) - bodies.position[i]).squaredNorm();
+                    const Vec centre = en.end2() ? row_end2_centre(bodies, s, k) : bodies.position[i];  // (a minimum image)
+                    arm2 = (Vec(&s.point[3 * k]) - centre).squaredNorm();
                 }
                 kt += k_t_at(s, k);
                 kr += k_r_at(s, k) + k_t_at(s, k) * arm2;

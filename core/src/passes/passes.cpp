@@ -45,7 +45,9 @@ plab_pass_view Passes::view(const PassInstance& p, bool distances_current, std::
     v.contact_end1 = c.end1();
     v.contact_end2 = c.end2();
     v.contact_end2_is_wall = c.end2_is_wall();
+    for (int a = 0; a < 3; ++a) periodic_length_[a] = b.cell.periodic[a] ? b.cell.length(a) : 0.0;
     v.contact_distance = c.distance(distances_current);  // they hold while the range test's lists do
+    v.periodic_length = b.cell.any() ? periodic_length_.data() : nullptr;
     return v;
 }
 

@@ -61,6 +61,7 @@ public:
     void run(std::uint32_t phase, bool distances_current, std::uint64_t step, const Unstable& unstable);
 
 private:
+    mutable std::array<double, 3> periodic_length_{};  // what a view's periodic_length points at
     PassInputs in_;
     std::vector<PassInstance> list_;
     plab_pass_view view(const PassInstance& p, bool distances_current, std::vector<double*>& columns) const;

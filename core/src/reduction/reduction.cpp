@@ -2,6 +2,7 @@
 // partial sums, the bodies' sums block by block, damping, the walls' loads.
 #include "reduction/reduction.hpp"
 
+#include "forces/geometry.hpp"
 #include "forces/row_lists.hpp"
 
 #include <algorithm>
@@ -52,7 +53,7 @@ void Reduction::scatter_rows(std::uint32_t si, std::size_t begin, std::size_t en
             wall_power -= f2.dot(in_.walls.velocity_at(in_.walls.facets[s.end2[k]].wall, point));
             continue;
         }
-        const Vec m2 = (point - B.position[s.end2[k]]).cross(f2) + Vec(&s.moment2[3 * k]);
+        const Vec m2 = (point - row_end2_centre(B, s, k)).cross(f2) + Vec(&s.moment2[3 * k]);
         add_to_slot(in_.dim, fm + width * std::size_t(s.end2[k] - lo), f2, m2);
     }
     double* e = s.batch_energy.data() + kBatchEnergies * (begin / kContactBatch);

@@ -131,6 +131,24 @@ void load_clumps(World& w, int groups, CheckpointReader& in) {
     if (C.surface.size() != n) C.surface.assign(n, -1);  // the scene's surfaces, kept when the scene built the same clumps
 }
 
+// The periodic cell (format 6): which axes are periodic and the cell's
+// bounds; a restart continues in the cell the run was in.
+void save_periodic_cell(const PeriodicCell& cell, CheckpointWriter& out) {
+    out.section("periodic_cell");
+    for (bool p : cell.periodic) out.u32(p ? 1 : 0);
+    out.vec(cell.lo);
+    out.vec(cell.hi);
+}
+
+void load_periodic_cell(PeriodicCell& cell, CheckpointReader& in) {
+    in.section("periodic_cell");
+    for (bool& p : cell.periodic) p = in.u32() != 0;
+    cell.lo = in.vec();
+    cell.hi = in.vec();
+    for (int c = 0; c < 3; ++c)
+        if (cell.periodic[c] && !(cell.hi[c] > cell.lo[c])) in.fail("its periodic cell has no extent along a periodic axis");
+}
+
 } // namespace
 
 std::vector<CheckpointSection> checkpoint_sections(Cycle& c) {
@@ -164,6 +182,11 @@ std::vector<CheckpointSection> checkpoint_sections(Cycle& c) {
          [&, groups](CheckpointReader& in) {
              if (in.format() >= 4) load_clumps(w, groups, in);
              else w.clumps = Clumps{};  // before format 4: no clumps
+         }},
+        {[&](CheckpointWriter& out) { save_periodic_cell(w.bodies.cell, out); },
+         [&](CheckpointReader& in) {
+             if (in.format() >= 6) load_periodic_cell(w.bodies.cell, in);
+             else w.bodies.cell = PeriodicCell{};  // before format 6: no periodic axis
          }},
     };
 }

@@ -22,7 +22,7 @@ std::vector<Eigen::Matrix3d> ball_stress(const World& w) {
                 sigma[i] += (p - w.bodies.position[i]) * (-f2).transpose();
                 if (!s->with_wall) {
                     const int j = s->end2[k];
-                    sigma[j] += (p - w.bodies.position[j]) * f2.transpose();
+                    sigma[j] += (p - row_end2_centre(w.bodies, *s, k)) * f2.transpose();  // (a minimum image)
                 }
             }
     for (std::size_t i = 0; i < w.bodies.size(); ++i) {
