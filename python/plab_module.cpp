@@ -223,6 +223,38 @@ public:
     }
 
     void cycle(long n) { s_->call([&] { s_->sim->cycle(n); }); }
+    // Up to n cycles, stopping after the first in which a bond breaks (an
+    // event a callback waits for): the cycles run. One cycle at a time, so
+    // each writes its contact forces (a few % of a step's cost).
+    long cycle_to_bond_break(long n) {
+        long done = 0;
+        s_->call([&] {
+            const std::size_t before = s_->world().bond_breaks.size();
+            while (done < n && s_->world().bond_breaks.size() == before) {
+                s_->sim->cycle(1);
+                ++done;
+            }
+        });
+        return done;
+    }
+    // The bonds broken so far, from the k-th on: (step, time, id1, id2, point, mode, model).
+    py::list bond_breaks(std::size_t from) const {
+        py::list out;
+        const auto& breaks = s_->world().bond_breaks;
+        for (std::size_t k = from; k < breaks.size(); ++k) {
+            const BondBreak& b = breaks[k];
+            py::dict d;
+            d["step"] = b.step;
+            d["time"] = b.time;
+            d["ids"] = py::make_tuple(b.id1, b.id2);
+            d["point"] = py::make_tuple(b.point.x(), b.point.y(), b.point.z());
+            d["mode"] = b.mode == PLAB_BREAK_SHEAR ? "shear" : "tension";
+            d["model"] = b.model;
+            out.append(d);
+        }
+        return out;
+    }
+    std::size_t bond_break_count() const { return s_->world().bond_breaks.size(); }
     void run() { s_->call([&] { s_->sim->run(); }); }
     // Cycles until `end` (absolute simulated time), as the scene's solve time does.
     void solve_until(double end, long max_cycles) {
@@ -413,6 +445,9 @@ PYBIND11_MODULE(_plab, m) {
     py::class_<Lease>(m, "_Lease");
     py::class_<PySim>(m, "Sim")
         .def("cycle", &PySim::cycle, py::arg("n"))
+        .def("cycle_to_bond_break", &PySim::cycle_to_bond_break, py::arg("n"))
+        .def("bond_breaks", &PySim::bond_breaks, py::arg("from") = 0)
+        .def_property_readonly("bond_break_count", &PySim::bond_break_count)
         .def("run", &PySim::run)
         .def("solve_until", &PySim::solve_until, py::arg("end"), py::arg("max_cycles"))
         .def("summary_json", &PySim::summary)

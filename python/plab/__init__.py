@@ -168,13 +168,18 @@ class Simulation:
         self._core = core
 
     # ---- running ----
-    def cycle(self, n, every=None, callback=None):
+    def cycle(self, n, every=None, callback=None, on_bond_break=None, on_instability=None):
         """Runs n cycles (histories and outputs as the scene says). With
         `callback`, calls callback(sim) after every `every` cycles (and after
-        the last); a callback that returns False (not None) stops the run there. Returns
-        the number of cycles run."""
+        the last); a callback that returns False (not None) stops the run
+        there. Events: on_bond_break(sim, breaks) after each cycle in which
+        bonds broke (`breaks`: a dict per bond: step, time, ids, point, mode,
+        model); on_instability(sim, error) when the run goes unstable, with
+        the world back at its last good state, before the RunError is
+        raised; an on_bond_break that returns False stops the run after that
+        cycle. Returns the number of cycles run."""
         n = int(n)
-        if callback is None:
+        if callback is None and on_bond_break is None and on_instability is None:
             self._core.cycle(n)
             return n
         every = int(every or n)
@@ -182,13 +187,35 @@ class Simulation:
             raise ValueError("every: expected a positive number of cycles, got %d" % every)
         done = 0
         while done < n:
-            k = min(every, n - done)
-            self._core.cycle(k)
+            k, stopped = self._cycle_watching(min(every, n - done), on_bond_break, on_instability)
             done += k
-            stop = callback(self)
-            if stop is not None and not stop:  # False, or NumPy's False
+            if stopped:
                 break
+            if callback is not None:
+                stop = callback(self)
+                if stop is not None and not stop:  # False, or NumPy's False
+                    break
         return done
+
+    def _cycle_watching(self, k, on_bond_break, on_instability):
+        """k cycles, calling the event handlers; (cycles run, stopped by a handler)."""
+        done = 0
+        try:
+            while done < k:
+                if on_bond_break is None:
+                    self._core.cycle(k - done)
+                    return k, False
+                before = self._core.bond_break_count
+                done += self._core.cycle_to_bond_break(k - done)
+                if self._core.bond_break_count > before:
+                    stop = on_bond_break(self, self._core.bond_breaks(before))
+                    if stop is not None and not stop:
+                        return done, True
+            return done, False
+        except RunError as error:
+            if on_instability is not None:
+                on_instability(self, error)
+            raise
 
     def solve(self, time, max_cycles=10**9):
         """Cycles for `time` seconds of simulated time, as the scene's
