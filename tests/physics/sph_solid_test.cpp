@@ -75,7 +75,7 @@ TEST_CASE("sph_solid: the Jaumann rate turns a stress with a rigid spin and crea
     CHECK(max_abs_difference(s0, rotated(s0, axis, omega * t_end)) > 0.1 * 3e5);
 }
 
-TEST_CASE("sph_solid: principal stresses rebuild the tensor; artificial stress acts on tension only", "[sph_solid]") {
+TEST_CASE("sph_solid: principal stresses rebuild the tensor, and artificial stress acts on tension only", "[sph_solid]") {
     const SymTensor s{3e5, -1e5, -2e5, 4e4, -7e4, 1.5e5};
     const sph_solid::Principal p = sph_solid::principal(s);
     for (int a = 0; a < 3; ++a)

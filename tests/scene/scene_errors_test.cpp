@@ -325,7 +325,7 @@ TEST_CASE("an unknown command names its path and lists the commands", "[scene]")
     json s = base_scene();
     s["commands"] = json::array({{{"cycles", 10}}});
     CHECK_THAT(load_error(s), Contains("scene.commands[0]") && Contains("\"cycles\"") &&
-                                  Contains("cycle, solve, set, bond, histories, output"));
+                                  Contains("cycle, solve, set, bond, servo, histories, output"));
 }
 
 TEST_CASE("a solve with neither time nor ratio names its path and the choices", "[scene]") {
