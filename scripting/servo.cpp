@@ -92,24 +92,22 @@ std::vector<Servo> read_servos(const Node& n, const World& w) {
     return out;
 }
 
+Vec wall_normal(const World& w, int wall) { return facet_normal(w.walls.facets[std::size_t(w.walls.walls[std::size_t(wall)].facets[0])]); }
+
 std::pair<int, int> read_wall_pair(const Node& n, const World& w) {
     if (!n.value().is_array() || n.size() != 2) n.fail("expected two wall names, got " + show(n.value()));
     const int a = read_wall(n.at(0), w), b = read_wall(n.at(1), w);
     if (a == b) n.at(1).fail("the two walls must differ");
     require_planar(n.at(0), w, a);
     require_planar(n.at(1), w, b);
-    const Vec na = facet_normal(w.walls.facets[std::size_t(w.walls.walls[std::size_t(a)].facets[0])]);
-    const Vec nb = facet_normal(w.walls.facets[std::size_t(w.walls.walls[std::size_t(b)].facets[0])]);
-    if (std::fabs(std::fabs(na.dot(nb)) - 1) > 1e-9) n.fail("the two walls are not parallel");
+    if (std::fabs(std::fabs(wall_normal(w, a).dot(wall_normal(w, b))) - 1) > 1e-9) n.fail("the two walls are not parallel");
     return {a, b};
 }
-
-Vec wall_normal(const World& w, int wall) { return facet_normal(w.walls.facets[std::size_t(w.walls.walls[std::size_t(wall)].facets[0])]); }
 
 double wall_distance(const World& w, int a, int b) {
     const Facet& fa = w.walls.facets[std::size_t(w.walls.walls[std::size_t(a)].facets[0])];
     const Facet& fb = w.walls.facets[std::size_t(w.walls.walls[std::size_t(b)].facets[0])];
-    return std::fabs((fb.a - fa.a).dot(facet_normal(fa)));
+    return std::fabs((fb.a - fa.a).dot(wall_normal(w, a)));
 }
 
 double servo_area(const Servo& s, const World& w) {
