@@ -27,7 +27,7 @@ NumPy work (O(N) per call) is part of the Python figure. The Python figures
 time the cycles only.
 
     PYTHONPATH=build/python OMP_NUM_THREADS=1 OMP_WAIT_POLICY=PASSIVE python3 bench/python/throughput.py \
-        [--steps 500] [--reps 3]
+        [--steps 500] [--reps 3] [--modes cli,py]
 """
 import argparse
 import json
@@ -103,6 +103,8 @@ def main():
     ap.add_argument("--steps", type=int, default=500)
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--base", type=int, default=10, help="steps of the CLI run subtracted")
+    ap.add_argument("--modes", default="cli,py,py_every10,py_every1,py_bare1",
+                    help="comma-separated, cli first (the reference)")
     a = ap.parse_args()
     if os.environ.get("OMP_NUM_THREADS") != "1":
         sys.exit("set OMP_NUM_THREADS=1: the figures are for one thread")
@@ -115,6 +117,10 @@ def main():
              "py_every10": lambda: run_python(scene_path, a.steps, a.base, 10),
              "py_every1": lambda: run_python(scene_path, a.steps, a.base, 1),
              "py_bare1": lambda: run_python(scene_path, a.steps, a.base, 1, bare=True)}
+    chosen = a.modes.split(",")
+    if chosen[0] != "cli" or not set(chosen) <= set(modes):
+        sys.exit(f"--modes: cli first, then any of {', '.join(modes)}")
+    modes = {k: modes[k] for k in chosen}
     best = {k: (float("inf"), float("inf")) for k in modes}
     hashes = {}
     for rep in range(a.reps):

@@ -59,6 +59,19 @@ def test_fixity_written_through_numpy_holds_a_ball_in_the_next_cycle(scenes):
     assert sim.positions[0, 1] < y0
 
 
+def test_a_velocity_prescribed_through_numpy_is_held_against_gravity(scenes):
+    # PFC's `ball fix velocity`: a fixed degree of freedom keeps the velocity written to it
+    sim = plab.load(scenes.free_ball(dim=3, dt=1e-4))
+    x0, z0 = sim.positions[0, 0], sim.positions[0, 2]
+    sim.fixity[0] = 1 | 4          # x and z prescribed, y free
+    sim.velocities[0] = (0.5, 0.0, -0.2)
+    sim.cycle(1000)                # 0.1 s
+    assert sim.velocities[0, 0] == 0.5 and sim.velocities[0, 2] == -0.2
+    assert sim.positions[0, 0] - x0 == pytest.approx(0.05, rel=1e-12)
+    assert sim.positions[0, 2] - z0 == pytest.approx(-0.02, rel=1e-12)
+    assert sim.positions[0, 1] == 0.0 and sim.velocities[0, 1] == 0.0  # no force along y
+
+
 def test_read_only_columns_refuse_writes(scenes):
     sim = plab.load(scenes.pile())
     for view in (sim.positions, sim.radii, sim.masses, sim.forces, sim.groups, sim.ids):
