@@ -4,8 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-# the 60 s fuzz smoke (CTest fuzz_smoke, a clang + ASan build of its own) is
-# part of the suite; PLAB_FUZZ_SMOKE=0 leaves it out
+# the 60 s fuzz smoke (CTest fuzz_smoke after fuzz_build, a clang + ASan build
+# of its own) is part of the suite; PLAB_FUZZ_SMOKE=0 leaves it out
 PLAB_FUZZ_SMOKE=${PLAB_FUZZ_SMOKE:-ON} scripts/build.sh
 jobs=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)  # GNU nproc honours OMP_NUM_THREADS: count the cores
 cd build

@@ -1,25 +1,16 @@
 #!/usr/bin/env bash
 # Fuzzes the scene parser and validator with libFuzzer for a fixed budget.
 #   tests/fuzz/run.sh [SECONDS]   (default 600)
-# Builds build-fuzz/ with clang (installed here if missing: the fuzz build
-# needs it, the default build does not), seeds a corpus with every scene in
-# examples/, and runs plab_scene_fuzz under ASan/UBSan. Findings (crash-*,
+# Builds build-fuzz/ (tests/fuzz/build.sh: clang, ASan, UBSan), seeds a
+# corpus with every scene in examples/, and runs plab_scene_fuzz under
+# ASan/UBSan. Findings (crash-*,
 # timeout-*, oom-*) land in build-fuzz/findings/; the corpus it grows stays
 # in build-fuzz/corpus/ for the next run.
 set -euo pipefail
 seconds=${1:-600}
 cd "$(dirname "$0")/../.."
 root=$PWD
-scripts/install-deps.sh
-if ! command -v clang++ >/dev/null; then
-  sudo_cmd=(); [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
-  "${sudo_cmd[@]}" apt-get install -y -qq clang >/dev/null
-fi
-flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g -O1"
-cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DPLAB_FUZZ=ON -DPLAB_BUILD_TESTS=OFF \
-  -DPLAB_OPENMP=OFF -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
-  -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" -DCMAKE_MODULE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target plab_scene_fuzz
+tests/fuzz/build.sh
 mkdir -p build-fuzz/corpus build-fuzz/findings
 find examples tests/restart -name '*.json' -exec cp {} build-fuzz/corpus/ \;
 # a dictionary of every key and string value of the example scenes

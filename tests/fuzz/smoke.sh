@@ -2,8 +2,8 @@
 # The fuzzer in a CI-sized dose (ctest fuzz_smoke, with -DPLAB_FUZZ_SMOKE=ON):
 # tests/fuzz/run.sh for SECONDS (default 60), failing if it stops with an
 # error or leaves a finding (crash-*, timeout-*, oom-*, leak-*) in
-# build-fuzz/findings/ during this run. From scratch it first builds
-# build-fuzz/ with clang, ASan and UBSan: ~7 min on 2 cores (README.md).
+# build-fuzz/findings/ during this run (CTest's fuzz_build makes
+# build-fuzz/ first).
 #   tests/fuzz/smoke.sh [SECONDS]
 set -euo pipefail
 seconds=${1:-60}
