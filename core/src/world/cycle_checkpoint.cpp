@@ -132,12 +132,16 @@ void load_clumps(World& w, int groups, CheckpointReader& in) {
 }
 
 // The periodic cell (format 6): which axes are periodic and the cell's
-// bounds; a restart continues in the cell the run was in.
+// bounds, and (format 7) its shear; a restart continues in the cell the
+// run was in.
 void save_periodic_cell(const PeriodicCell& cell, CheckpointWriter& out) {
     out.section("periodic_cell");
     for (bool p : cell.periodic) out.u32(p ? 1 : 0);
     out.vec(cell.lo);
     out.vec(cell.hi);
+    out.u32(cell.sheared ? 1 : 0);  // (format 7: Lees–Edwards)
+    out.f64(cell.shear_rate);
+    out.f64(cell.shear_offset);
 }
 
 void load_periodic_cell(PeriodicCell& cell, CheckpointReader& in) {
@@ -145,6 +149,11 @@ void load_periodic_cell(PeriodicCell& cell, CheckpointReader& in) {
     for (bool& p : cell.periodic) p = in.u32() != 0;
     cell.lo = in.vec();
     cell.hi = in.vec();
+    if (in.format() >= 7) {
+        cell.sheared = in.u32() != 0;
+        cell.shear_rate = in.f64();
+        cell.shear_offset = in.f64();
+    }
     for (int c = 0; c < 3; ++c)
         if (cell.periodic[c] && !(cell.hi[c] > cell.lo[c])) in.fail("its periodic cell has no extent along a periodic axis");
 }
