@@ -13,7 +13,6 @@ void save_detection(const DetectionState& d, const StiffnessSums& summed, Checkp
     out.column(d.pass_contacts.end1_column());
     out.column(d.pass_contacts.end2_column());
     out.column(d.pass_contacts.wall_column());
-    out.f64(d.neighbours.offset_at_build());  // (format 7)
 }
 
 void load_detection(const DetectionState& d, StiffnessSums& stiffness, std::size_t body_count, CheckpointReader& in) {
@@ -30,7 +29,6 @@ void load_detection(const DetectionState& d, StiffnessSums& stiffness, std::size
     d.pass_contacts.end1_column() = in.column<std::int32_t>();
     d.pass_contacts.end2_column() = in.column<std::int32_t>();
     d.pass_contacts.wall_column() = in.column<std::uint8_t>();
-    if (in.format() >= 7) lists.offset_at_build = in.f64();
     d.neighbours.restore(std::move(lists));
     if (reference_missing) in.fail("the neighbour-list reference positions do not match the bodies");
     if (d.prepared && (stiffness.translational().size() != body_count || stiffness.rotational().size() != body_count))

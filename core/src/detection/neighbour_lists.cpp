@@ -69,7 +69,6 @@ void NeighbourLists::restore(Saved s) {
     invalidated_ = s.invalidated;
     position_at_build_ = std::move(s.position_at_build);
     wall_motion_ = s.wall_motion;
-    offset_at_build_ = s.offset_at_build;
 }
 
 void NeighbourLists::find_ball_pairs(const Bodies& bodies, const AssignmentTable& table, const Instances& instances,

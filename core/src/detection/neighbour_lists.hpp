@@ -49,11 +49,13 @@ public:
         bool invalidated = true;
         std::vector<Vec> position_at_build;
         double wall_motion = 0;
-        double offset_at_build = 0;  // m, a sheared cell's offset at the build
     };
     bool invalidated() const { return invalidated_; }
     double wall_motion() const { return wall_motion_; }
+    // A sheared cell's offset at the build (the periodic cell's checkpoint
+    // section keeps it, after the detection section).
     double offset_at_build() const { return offset_at_build_; }
+    void restore_offset_at_build(double offset) { offset_at_build_ = offset; }
     void restore(Saved s);
 
 private:
