@@ -55,13 +55,14 @@ void Simulation::load(const Node& root) {
     world_ = std::make_unique<World>(dim, host_);
     if (root.has("domain")) {
         const Node d = root.at("domain");
-        d.allow_keys({"min", "max", "periodic"});
+        d.allow_keys({"min", "max", "periodic", "shear"});
         domain_min_ = d.at("min").vec(dim);
         domain_max_ = d.at("max").vec(dim);
         for (int c = 0; c < dim; ++c)
             if (!(domain_min_[c] < domain_max_[c]))
                 d.at("max").fail("domain max must exceed min in every direction (component " + std::to_string(c) + ")");
         if (d.has("periodic")) load_periodic_axes(d.at("periodic"));
+        if (d.has("shear")) load_shear(d.at("shear"));
         if (dim == 2) { domain_min_.z() = -kInf; domain_max_.z() = kInf; }
     }
     world_->gravity = root.vec_or("gravity", dim, Vec::Zero());
@@ -86,6 +87,7 @@ void Simulation::load(const Node& root) {
     if (root.has("histories")) load_histories(root.at("histories"));
     if (root.has("output")) load_output(root.at("output"));
     if (root.has("commands")) load_commands(root.at("commands"));
+    if (world_->bodies.cell.sheared) start_shear();
     if (world_->bodies.cell.any() && world_->clumps.size())
         root.at("domain").at("periodic").fail("a periodic cell with clumps is not supported yet (a clump's pebbles would be wrapped apart); valid: no clumps, or no periodic axis");
 }
@@ -127,6 +129,26 @@ void Simulation::load_periodic_axes(const Node& n) {
     cell.lo = domain_min_;
     cell.hi = domain_max_;
     if (world_->dim == 2) { cell.lo.z() = 0; cell.hi.z() = 1; }
+}
+
+// domain.shear: Lees–Edwards simple shear of the periodic cell (flow along
+// x, gradient along y; plab_host/bodies.hpp, PeriodicCell).
+void Simulation::load_shear(const Node& n) {
+    n.allow_keys({"rate", "initial_velocity"});
+    PeriodicCell& cell = world_->bodies.cell;
+    if (!cell.periodic[0] || !cell.periodic[1])
+        n.fail("a sheared cell needs x (the flow) and y (the gradient) periodic; valid: domain.periodic listing x and y");
+    cell.sheared = true;
+    cell.shear_rate = n.at("rate").number();
+    shear_start_affine_ = n.has("initial_velocity") ? n.at("initial_velocity").choice({"affine", "as_given"}) == "affine" : true;
+}
+
+// After the bodies: the balls start on the shear's flow (v_x += rate (y -
+// y_mid), "affine") unless told not to.
+void Simulation::start_shear() {
+    Bodies& b = world_->bodies;
+    if (shear_start_affine_)
+        for (std::size_t i = 0; i < b.size(); ++i) b.velocity[i].x() += b.cell.affine_velocity(b.position[i]);
 }
 
 void Simulation::check_domain(const std::string& where, std::size_t first) const {
@@ -347,6 +369,9 @@ void Simulation::load_stability(const Node& n) {
 
 void Simulation::load_passes(const Node& n) {
     n.expect_array();
+    if (world_->bodies.cell.sheared && n.size())  // (a pass's view has no shear)
+        n.fail("passes (SPH, coupling) in a sheared cell are not supported: their plab_pass_view has no shear; "
+               "valid: no passes, or no domain.shear");
     for (std::size_t i = 0; i < n.size(); ++i) {
         const Node p = n.at(i);
         p.allow_keys({"name", "material", "properties"});

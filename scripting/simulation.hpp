@@ -229,7 +229,10 @@ private:
     bool finished_ = false;  // run() ended, not stopped by a signal (summary.json: "finished")
     void check_domain(const std::string& where, std::size_t first) const;
     void load_periodic_axes(const Node& n);
+    void load_shear(const Node& n);
+    void start_shear();
     Vec domain_min_ = Vec::Constant(-kInf), domain_max_ = Vec::Constant(kInf);
+    bool shear_start_affine_ = true;  // domain.shear.initial_velocity
     GeneratorLimits limits_;
     std::vector<Servo> servos_;  // scene.servos: walls driven to a target stress before each step
     BodyFlows flows_;            // scene.inlets and scene.outlets: balls added and removed before each step

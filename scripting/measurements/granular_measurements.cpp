@@ -1,5 +1,6 @@
 // Measurements of a granular deposit: the slope of a heap's flank, its
-// angle of repose (the angle_of_repose case).
+// angle of repose (the angle_of_repose case); the stress from the contacts;
+// the velocity gradient of a sheared cell's flow (the periodic_shear case).
 #include "measurement.hpp"
 
 #include "../generators.hpp"
@@ -65,6 +66,26 @@ Measurement heap_angle(const Node& with, const World& w) {
         for (std::size_t s = 0; s < strips; ++s)
             if (top[s] > -kInf) { xs.push_back(lo + (double(s) + 0.5) * width); ys.push_back(top[s]); }  // (none empty with y_min)
         return std::atan(std::fabs(fitted_slope(xs, ys))) * 180.0 / M_PI;
+    };
+}
+
+// velocity_gradient: the least-squares slope d v_x / d y of the group's
+// balls' velocities against their heights, each ball taken inside the cell
+// (a sheared cell's wrap moves its x velocity with it): the flow's shear
+// rate, the imposed one when the mean profile is the linear profile of
+// simple shear, less when the flow bands or slips at the boundary.
+Measurement velocity_gradient(const Node& with, const World& w) {
+    with.allow_keys({"group"});
+    const int group = measured_group(with, w);
+    return [group](const World& x) {
+        std::vector<double> ys, vs;
+        for (std::size_t i = 0; i < x.bodies.size(); ++i) {
+            if (x.bodies.group[i] != group) continue;
+            Vec v = x.bodies.velocity[i];
+            ys.push_back(x.bodies.cell.wrap(x.bodies.position[i], &v).y());
+            vs.push_back(v.x());
+        }
+        return fitted_slope(ys, vs);
     };
 }
 
@@ -185,6 +206,40 @@ Measurement contact_stress(const Node& with, const World& w) {
     };
 }
 
+// kinetic_stress: the kinetic (Reynolds) part of the stress in a box,
+// sigma = -(1/V) sum_i m_i v'_i (x) v'_i over the balls whose centre (taken
+// inside the cell) lies in it, tension positive, with v' the velocity less
+// a sheared cell's flow (the peculiar velocity; the velocity itself in any
+// other space): what the contact stress leaves out in a dilute flow.
+Measurement kinetic_stress(const Node& with, const World& w) {
+    with.allow_keys({"min", "max", "component"});
+    const Box box{with.at("min").vec(w.dim), with.at("max").vec(w.dim)};
+    for (int d = 0; d < w.dim; ++d)
+        if (!(box.lo[d] < box.hi[d])) with.at("max").fail("the box's max must exceed its min in every direction");
+    const Node cn = with.at("component");
+    const std::string comp = w.dim == 2 ? cn.choice({"xx", "yy", "xy", "pressure"})
+                                        : cn.choice({"xx", "yy", "zz", "xy", "xz", "yz", "pressure"});
+    const int i = comp == "pressure" ? -1 : comp[0] - 'x', j = comp == "pressure" ? -1 : comp[1] - 'x';
+    const int dim = w.dim;
+    double volume = 1;
+    for (int d = 0; d < dim; ++d) volume *= box.hi[d] - box.lo[d];
+    return [box, i, j, dim, volume](const World& x) {
+        Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+        for (std::size_t b = 0; b < x.bodies.size(); ++b) {
+            Vec v = x.bodies.velocity[b];
+            const Vec c = x.bodies.cell.wrap(x.bodies.position[b], &v);
+            bool inside = true;
+            for (int d = 0; d < dim; ++d) inside &= c[d] >= box.lo[d] && c[d] <= box.hi[d];
+            if (!inside) continue;
+            v.x() -= x.bodies.cell.affine_velocity(c);
+            sum -= x.bodies.mass[b] * v * v.transpose();
+        }
+        sum /= volume;
+        if (i < 0) return -sum.trace() / dim;
+        return sum(i, j);
+    };
+}
+
 // wall_distance: the distance between two parallel planar walls, e.g. a
 // sample's height between its platens (axial strain).
 Measurement wall_distance_between(const Node& with, const World& w) {
@@ -204,6 +259,13 @@ void register_granular_measurements(std::map<std::string, MeasurementInfo>& into
                               "-(1/V) sum of branch (x) force (Love-Weber; tension positive; a wall contact's branch ends on "
                               "the wall's surface): component xx, yy, zz, xy, xz, yz (symmetric part) or pressure (-trace/dim) [Pa]",
                               contact_stress};
+    into["kinetic_stress"] = {"kinetic stress in the box [min, max]: -(1/V) sum of m v' (x) v' over the balls whose centre lies "
+                              "in it, v' the velocity less a sheared cell's flow (tension positive): component xx, yy, zz, xy, "
+                              "xz, yz or pressure (-trace/dim) [Pa]",
+                              kinetic_stress};
+    into["velocity_gradient"] = {"least-squares slope d v_x / d y of the group's balls' x velocities against their heights in "
+                                  "the cell: a sheared cell's flow rate (the imposed domain.shear.rate for a linear mean profile) [1/s]",
+                                  velocity_gradient};
     into["wall_distance"] = {"distance between two parallel planar walls, walls: [a, b] (their names), along a's normal [m]",
                              wall_distance_between};
 }

@@ -36,29 +36,71 @@ inline std::size_t body_blocks(std::size_t bodies) { return (bodies + kBodyBlock
 // its minimum image. The cell is at least twice the largest candidate
 // cut-off wide along such an axis, so the minimum image is the only one in
 // range and contacts stay keyed by the ids of their ends alone.
+//
+// A sheared cell (Lees & Edwards 1972, simple shear at rate shear_rate,
+// flow along x, gradient along y, both periodic): the image of the cell
+// above moves along x at +shear_rate L_y and has slid by shear_offset
+// (= shear_rate L_y t modulo L_x), so an image across the y boundary is
+// shifted along x by -/+ shear_offset and its velocity by -/+ shear_rate L_y.
 struct PeriodicCell {
     std::array<bool, 3> periodic{{false, false, false}};
     Vec lo = Vec::Zero(), hi = Vec::Zero();
+    double shear_rate = 0;    // 1/s, d v_x / d y; 0: no shear
+    double shear_offset = 0;  // m, in [0, L_x): how far the cell above has slid along x
+    bool sheared = false;     // a Lees–Edwards cell (set with the rate, even a zero rate)
     bool any() const { return periodic[0] || periodic[1] || periodic[2]; }
     double length(int c) const { return hi[c] - lo[c]; }
-    // xj moved by whole cell lengths along the periodic axes to the image
-    // nearest xi (xj itself along the others).
+    // The offset at time t (from the time, not accumulated: a restart or a
+    // rewind to the last good state gets the same bits).
+    void slide_to(double t) {
+        if (sheared) shear_offset = std::fmod(std::fmod(shear_rate * length(1) * t, length(0)) + length(0), length(0));
+    }
+    // How many cells up (along y) xj lies from xi's minimum image: the
+    // image is xj moved down by that many cells (0 without shear).
+    double rows_up(const Vec& xi, const Vec& xj) const {
+        return sheared ? std::nearbyint((xj[1] - xi[1]) / length(1)) : 0.0;
+    }
+    // xj moved by whole cell lengths along the periodic axes (and, across
+    // a sheared y boundary, by the offset along x) to the image nearest xi
+    // (xj itself along the others).
     Vec image(const Vec& xi, const Vec& xj) const {
         Vec y = xj;
+        if (sheared) {
+            const double k = rows_up(xi, xj);
+            y[1] -= length(1) * k;
+            y[0] -= shear_offset * k;
+        }
         for (int c = 0; c < 3; ++c)
-            if (periodic[c]) y[c] -= length(c) * std::nearbyint((xj[c] - xi[c]) / length(c));
+            if (periodic[c]) y[c] -= length(c) * std::nearbyint((y[c] - xi[c]) / length(c));
         return y;
     }
-    // x back inside [lo, hi) along the periodic axes.
-    Vec wrap(const Vec& x) const {
+    // Ball j's velocity vj at the image of xj nearest xi.
+    Vec image_velocity(const Vec& xi, const Vec& xj, const Vec& vj) const {
+        if (!sheared) return vj;
+        Vec v = vj;
+        v[0] -= shear_rate * length(1) * rows_up(xi, xj);
+        return v;
+    }
+    // x back inside [lo, hi) along the periodic axes; a sheared cell moves
+    // x along by the offset per cell crossed along y (and the velocity v,
+    // when given, by the image's velocity).
+    Vec wrap(const Vec& x, Vec* v = nullptr) const {
         Vec y = x;
+        if (sheared) {
+            const double k = std::floor((x[1] - lo[1]) / length(1));
+            y[0] -= shear_offset * k;
+            if (v) (*v)[0] -= shear_rate * length(1) * k;
+        }
         for (int c = 0; c < 3; ++c) {
             if (!periodic[c]) continue;
-            y[c] -= length(c) * std::floor((x[c] - lo[c]) / length(c));
+            y[c] -= length(c) * std::floor((y[c] - lo[c]) / length(c));
             if (y[c] >= hi[c] || y[c] < lo[c]) y[c] = lo[c];  // (round-off at the upper face)
         }
         return y;
     }
+    // The flow velocity of simple shear at x, zero at the middle of the
+    // cell: a ball's velocity less this is its peculiar (fluctuating) velocity.
+    double affine_velocity(const Vec& x) const { return sheared ? shear_rate * (x[1] - 0.5 * (lo[1] + hi[1])) : 0.0; }
 };
 
 struct Bodies {

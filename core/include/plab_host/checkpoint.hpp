@@ -30,7 +30,7 @@ namespace plab {
 // The format version this build writes, and the oldest it reads (what each
 // version changed: docs/restart.md). Versions before kCheckpointFramedFormat
 // have no lengths or checksums.
-constexpr std::uint32_t kCheckpointFormat = 6;
+constexpr std::uint32_t kCheckpointFormat = 7;
 constexpr std::uint32_t kCheckpointOldestFormat = 1;
 constexpr std::uint32_t kCheckpointFramedFormat = 3;
 

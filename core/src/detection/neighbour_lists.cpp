@@ -32,8 +32,17 @@ bool NeighbourLists::stale(const Bodies& bodies) const {
     if (invalidated_ || max_drift2_ < 0) return true;
     const double s = effective_skin(bodies);
     const double max_disp = std::sqrt(max_drift2_);
-    // two bodies closing on each other, or a body and a moving wall
-    return 2.0 * max_disp > s || max_disp + wall_motion_ > s;
+    // two bodies closing on each other (across a sheared boundary, also by
+    // the cell's slide since the build), or a body and a moving wall
+    return 2.0 * max_disp + slid_since_build(bodies.cell) > s || max_disp + wall_motion_ > s;
+}
+
+// How far the image across a sheared y boundary has slid along x since the
+// build (the offset is kept modulo L_x: the nearest difference).
+double NeighbourLists::slid_since_build(const PeriodicCell& cell) const {
+    if (!cell.sheared) return 0.0;
+    const double d = cell.shear_offset - offset_at_build_, L = cell.length(0);
+    return std::fabs(d - L * std::nearbyint(d / L));
 }
 
 void NeighbourLists::find_pairs(const Bodies& bodies, const Walls& walls, const AssignmentTable& table,
@@ -50,6 +59,7 @@ void NeighbourLists::find_pairs(const Bodies& bodies, const Walls& walls, const 
 
 void NeighbourLists::built(const Bodies& bodies) {
     position_at_build_ = bodies.position;
+    offset_at_build_ = bodies.cell.shear_offset;
     wall_motion_ = 0;
     invalidated_ = false;
     ++rebuilds;
@@ -174,6 +184,36 @@ int neighbour_cells(long x, long n, bool periodic, long out[3]) {
     return count;
 }
 
+// The grid rows (along y) around a ball at p and, in each, the columns
+// (along x) to search. In a sheared cell a row across the y boundary holds
+// balls whose images slid along x by the offset: its columns are those
+// around p moved back by the offset (the grid is at least a cut-off wide,
+// so one column either side still covers the range). In a grid of fewer
+// than three rows a row may be both across the boundary and not: every
+// column is searched (nx -1).
+struct RowsAround {
+    long y[3];
+    long x[3][3];
+    int nx[3];
+};
+int rows_around(const PeriodicCell& pc, const Vec& p, const std::array<long, 3>& dims, const Vec& size, const Vec& lo,
+                RowsAround& out) {
+    auto column = [&](double x) {
+        if (pc.periodic[0]) x -= pc.length(0) * std::floor((x - lo[0]) / pc.length(0));
+        return std::max(0L, std::min(dims[0] - 1, long((x - lo[0]) / size[0])));
+    };
+    const long cy = std::max(0L, std::min(dims[1] - 1, long((p[1] - lo[1]) / size[1])));
+    const int ny = neighbour_cells(cy, dims[1], pc.periodic[1], out.y);
+    for (int r = 0; r < ny; ++r) {
+        if (pc.sheared && dims[1] < 3) { out.nx[r] = -1; continue; }
+        double shift = 0;  // the slide of the row's images seen from p
+        if (pc.sheared) shift = out.y[r] == 0 && cy == dims[1] - 1 ? pc.shear_offset
+                                : out.y[r] == dims[1] - 1 && cy == 0 ? -pc.shear_offset : 0.0;
+        out.nx[r] = neighbour_cells(column(p[0] - shift), dims[0], pc.periodic[0], out.x[r]);
+    }
+    return ny;
+}
+
 } // namespace
 
 // Refuses a periodic cell narrower than twice the largest candidate
@@ -252,14 +292,14 @@ void NeighbourLists::find_ball_pairs_periodic(const Bodies& bodies, const Assign
         const std::int32_t* clump = bodies.clump.size() == n ? bodies.clump.data() : nullptr;
         for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
             const Vec& pi = bodies.position[i];
-            long xs[3], ys[3], zs[3] = {0, 0, 0};
-            const int nx = neighbour_cells(cell_at(pi, 0), dims[0], pc.periodic[0], xs);
-            const int ny = neighbour_cells(cell_at(pi, 1), dims[1], pc.periodic[1], ys);
+            RowsAround rows;
+            const int ny = rows_around(pc, pi, dims, size, lo, rows);
+            long zs[3] = {0, 0, 0};
             const int nz = dim == 3 ? neighbour_cells(cell_at(pi, 2), dims[2], pc.periodic[2], zs) : 1;
             for (int z = 0; z < nz; ++z)
                 for (int y = 0; y < ny; ++y)
-                    for (int x = 0; x < nx; ++x) {
-                        const long c = (zs[z] * dims[1] + ys[y]) * dims[0] + xs[x];
+                    for (long x = 0, nx = rows.nx[y] < 0 ? dims[0] : rows.nx[y]; x < nx; ++x) {
+                        const long c = (zs[z] * dims[1] + rows.y[y]) * dims[0] + (rows.nx[y] < 0 ? x : rows.x[y][x]);
                         for (std::int32_t t = start[c]; t < start[c + 1]; ++t) {
                             const std::int32_t j = items[t];
                             if (std::size_t(j) <= i) continue;

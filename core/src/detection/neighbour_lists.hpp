@@ -52,13 +52,19 @@ public:
     };
     bool invalidated() const { return invalidated_; }
     double wall_motion() const { return wall_motion_; }
+    // A sheared cell's offset at the build (the periodic cell's checkpoint
+    // section keeps it, after the detection section).
+    double offset_at_build() const { return offset_at_build_; }
+    void restore_offset_at_build(double offset) { offset_at_build_ = offset; }
     void restore(Saved s);
 
 private:
     bool invalidated_ = true;
     std::vector<Vec> position_at_build_;
     double wall_motion_ = 0;
+    double offset_at_build_ = 0;
     double max_drift2_ = -1;
+    double slid_since_build(const PeriodicCell& cell) const;
     std::vector<PairList> ball_pairs_, wall_pairs_;  // per instance; cleared, not freed, between builds
     std::vector<std::vector<PairList>> block_pairs_;  // [block of bodies][instance]
     void find_ball_pairs(const Bodies& bodies, const AssignmentTable& table, const Instances& instances,

@@ -24,17 +24,18 @@ bool pack_centre_loop(const Bodies& B, const ContactSet& s, const OptionalInputs
     return pack_rows(B, s, optional, max_overlap, n_active, d,
                      [&](std::size_t a, std::int32_t i, std::int32_t j, double, double dist, double) {
                          const Vec xj = seen_from<Periodic>(B, i, j);  // (a copy the compiler drops without a cell)
+                         const Vec vj = velocity_seen_from<Periodic>(B, i, j);
                          if (Dim == 2) {
                              const PlaneNormal n = centre_normal_2d(B.position[i], xj, dist);
                              d.normal[3 * a] = n.x;
                              d.normal[3 * a + 1] = n.y;
                              d.normal[3 * a + 2] = 0.0;
-                             d.rel_velocity[3 * a] = B.velocity[j].x() - B.velocity[i].x();
-                             d.rel_velocity[3 * a + 1] = B.velocity[j].y() - B.velocity[i].y();
+                             d.rel_velocity[3 * a] = vj.x() - B.velocity[i].x();
+                             d.rel_velocity[3 * a + 1] = vj.y() - B.velocity[i].y();
                              d.rel_velocity[3 * a + 2] = 0.0;
                          } else {
                              put(d.normal, a, centre_normal(B.position[i], xj, dist));
-                             put(d.rel_velocity, a, B.velocity[j] - B.velocity[i]);
+                             put(d.rel_velocity, a, vj - B.velocity[i]);
                          }
                          return Vec(Vec::Zero());
                      });

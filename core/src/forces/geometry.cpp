@@ -124,7 +124,8 @@ bool ball_ball_rows(const Bodies& B, const ModelInstance& inst, ContactSet& s, s
             const std::size_t k = rows[a];
             const double ri = s.radius1[k], rj = s.radius2[k], gap = s.gap[k];
             const std::int32_t i = s.end1[k], j = s.end2[k];
-            const PairKinematics p = ball_pair_kinematics(B, i, j, seen_from<Periodic>(B, i, j), ri, s.distance[k], gap);
+            const PairKinematics p = ball_pair_kinematics(B, i, j, seen_from<Periodic>(B, i, j), velocity_seen_from<Periodic>(B, i, j),
+                                                            ri, s.distance[k], gap);
             put(s.normal, k, p.normal);
             put(s.point, k, p.point);
             put(s.rel_velocity, k, p.rel_velocity);

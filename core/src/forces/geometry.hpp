@@ -82,16 +82,23 @@ inline Vec seen_from(const Bodies& B, std::int32_t i, std::int32_t j) {
     if constexpr (Periodic) return B.cell.image(B.position[i], B.position[j]);
     else return B.position[j];
 }
-// (xj: ball j's centre, or its minimum image in a periodic cell)
-inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, const Vec& xj, double ri,
-                                           double dist, double gap) {
+// Ball j's velocity as ball i sees it: its image's across a sheared
+// boundary (Lees–Edwards: -/+ shear_rate L_y along x), its own otherwise.
+template <bool Periodic>
+inline Vec velocity_seen_from(const Bodies& B, std::int32_t i, std::int32_t j) {
+    if constexpr (Periodic) return B.cell.image_velocity(B.position[i], B.position[j], B.velocity[j]);
+    else return B.velocity[j];
+}
+// (xj, vj: ball j's centre and velocity, or its minimum image's in a periodic cell)
+inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, const Vec& xj, const Vec& vj_,
+                                           double ri, double dist, double gap) {
     const Vec& xi = B.position[i];
     PairKinematics p;
     p.normal = centre_normal(xi, xj, dist);
     p.point = ball_contact_point(xi, p.normal, ri, gap);
     p.arm1 = p.point - xi;
     p.arm2 = p.point - xj;
-    const Vec vj = B.velocity[j] + B.angular_velocity[j].cross(p.arm2);
+    const Vec vj = vj_ + B.angular_velocity[j].cross(p.arm2);
     const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(p.arm1);
     p.rel_velocity = vj - vi;
     p.rel_angular_velocity = B.angular_velocity[j] - B.angular_velocity[i];
@@ -99,7 +106,7 @@ inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std:
 }
 inline PairKinematics ball_pair_kinematics(const Bodies& B, std::int32_t i, std::int32_t j, double ri, double dist,
                                            double gap) {
-    return ball_pair_kinematics(B, i, j, B.position[j], ri, dist, gap);
+    return ball_pair_kinematics(B, i, j, B.position[j], B.velocity[j], ri, dist, gap);
 }
 // End 2's centre of ball–ball row k as end 1 sees it (the minimum image in
 // a periodic cell): for the readers, where a test per row costs nothing.

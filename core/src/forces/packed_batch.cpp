@@ -129,9 +129,9 @@ namespace {
 // velocities have z = 0 and its spins only a z component (its implicit
 // fixity), so only the other components are worked out, with the same
 // arithmetic (w x a in x is 0*0 - w_z a_y, in y w_z a_x - 0*0).
-// (xj_: ball j's centre, or its minimum image)
-inline PairKinematics ball_pair_kinematics_2d(const Bodies& B, std::int32_t i, std::int32_t j, const Vec& xj_, double ri,
-                                              double dist, double gap) {
+// (xj_, vj: ball j's centre and velocity, or its minimum image's)
+inline PairKinematics ball_pair_kinematics_2d(const Bodies& B, std::int32_t i, std::int32_t j, const Vec& xj_, const Vec& vj,
+                                              double ri, double dist, double gap) {
     const double xi = B.position[i].x(), yi = B.position[i].y(), xj = xj_.x(), yj = xj_.y();
     const PlaneNormal n = centre_normal_2d(B.position[i], xj_, dist);
     const double nx = n.x, ny = n.y;
@@ -139,7 +139,7 @@ inline PairKinematics ball_pair_kinematics_2d(const Bodies& B, std::int32_t i, s
     const double px = xi + nx * reach, py = yi + ny * reach;
     const double a1x = px - xi, a1y = py - yi, a2x = px - xj, a2y = py - yj;
     const double wi = B.angular_velocity[i].z(), wj = B.angular_velocity[j].z();
-    const double vjx = B.velocity[j].x() + (0.0 - wj * a2y), vjy = B.velocity[j].y() + wj * a2x;
+    const double vjx = vj.x() + (0.0 - wj * a2y), vjy = vj.y() + wj * a2x;
     const double vix = B.velocity[i].x() + (0.0 - wi * a1y), viy = B.velocity[i].y() + wi * a1x;
     PairKinematics p;
     p.normal = Vec(nx, ny, 0.0);
@@ -157,9 +157,9 @@ bool pack_rows_in_range(const Bodies& B, const ContactSet& s, const OptionalInpu
                         std::size_t n_active, DenseBatch& d) {
     return pack_rows(B, s, optional, max_overlap, n_active, d,
                      [&](std::size_t a, std::int32_t i, std::int32_t j, double ri, double dist, double gap) {
-                         const Vec xj = seen_from<Periodic>(B, i, j);
-                         const PairKinematics p = Dim == 2 ? ball_pair_kinematics_2d(B, i, j, xj, ri, dist, gap)
-                                                           : ball_pair_kinematics(B, i, j, xj, ri, dist, gap);
+                         const Vec xj = seen_from<Periodic>(B, i, j), vj = velocity_seen_from<Periodic>(B, i, j);
+                         const PairKinematics p = Dim == 2 ? ball_pair_kinematics_2d(B, i, j, xj, vj, ri, dist, gap)
+                                                           : ball_pair_kinematics(B, i, j, xj, vj, ri, dist, gap);
                          put(d.normal, a, p.normal);
                          if (!s.packed) put(d.point, a, p.point);
                          put(d.arm1, a, p.arm1);

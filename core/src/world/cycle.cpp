@@ -60,6 +60,7 @@ void Cycle::prepare() {
     world.fields.resize(world.bodies.size());
     monitor.stiffness.clear(world.bodies.size());
     neighbours.invalidate();
+    world.bodies.cell.slide_to(world.time);
     {
         PhaseTimer t{world.phase_seconds[ph_detection]};
         rebuild();
@@ -139,6 +140,7 @@ void Cycle::advance() {
     {
         PhaseTimer t{world.phase_seconds[ph_motion]};
         kick_and_drift(dt);
+        world.bodies.cell.slide_to(world.time + dt);  // (the positions' time)
         neighbours.walls_moved(world.walls.move(dt, world.dim));
     }
     {

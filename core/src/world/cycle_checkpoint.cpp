@@ -132,19 +132,30 @@ void load_clumps(World& w, int groups, CheckpointReader& in) {
 }
 
 // The periodic cell (format 6): which axes are periodic and the cell's
-// bounds; a restart continues in the cell the run was in.
-void save_periodic_cell(const PeriodicCell& cell, CheckpointWriter& out) {
+// bounds, and (format 7) its shear and its offset when the lists were last
+// built; a restart continues in the cell the run was in.
+void save_periodic_cell(const PeriodicCell& cell, double offset_at_build, CheckpointWriter& out) {
     out.section("periodic_cell");
     for (bool p : cell.periodic) out.u32(p ? 1 : 0);
     out.vec(cell.lo);
     out.vec(cell.hi);
+    out.u32(cell.sheared ? 1 : 0);  // (format 7: Lees–Edwards)
+    out.f64(cell.shear_rate);
+    out.f64(cell.shear_offset);
+    out.f64(offset_at_build);
 }
 
-void load_periodic_cell(PeriodicCell& cell, CheckpointReader& in) {
+void load_periodic_cell(PeriodicCell& cell, NeighbourLists& lists, CheckpointReader& in) {
     in.section("periodic_cell");
     for (bool& p : cell.periodic) p = in.u32() != 0;
     cell.lo = in.vec();
     cell.hi = in.vec();
+    if (in.format() >= 7) {
+        cell.sheared = in.u32() != 0;
+        cell.shear_rate = in.f64();
+        cell.shear_offset = in.f64();
+        lists.restore_offset_at_build(in.f64());
+    }
     for (int c = 0; c < 3; ++c)
         if (cell.periodic[c] && !(cell.hi[c] > cell.lo[c])) in.fail("its periodic cell has no extent along a periodic axis");
 }
@@ -183,9 +194,9 @@ std::vector<CheckpointSection> checkpoint_sections(Cycle& c) {
              if (in.format() >= 4) load_clumps(w, groups, in);
              else w.clumps = Clumps{};  // before format 4: no clumps
          }},
-        {[&](CheckpointWriter& out) { save_periodic_cell(w.bodies.cell, out); },
+        {[&](CheckpointWriter& out) { save_periodic_cell(w.bodies.cell, c.neighbours.offset_at_build(), out); },
          [&](CheckpointReader& in) {
-             if (in.format() >= 6) load_periodic_cell(w.bodies.cell, in);
+             if (in.format() >= 6) load_periodic_cell(w.bodies.cell, c.neighbours, in);
              else w.bodies.cell = PeriodicCell{};  // before format 6: no periodic axis
          }},
     };

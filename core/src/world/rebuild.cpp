@@ -35,8 +35,10 @@ void Cycle::rebuild() {
     // balls that left a periodic cell come back on the other side here, at a
     // rebuild only: between rebuilds the geometry takes minimum images, and
     // the drift's displacement since the build stays continuous
-    if (world.bodies.cell.any())
-        for (Vec& x : world.bodies.position) x = world.bodies.cell.wrap(x);
+    if (world.bodies.cell.any()) {
+        Bodies& B = world.bodies;
+        for (std::size_t i = 0; i < B.size(); ++i) B.position[i] = B.cell.wrap(B.position[i], &B.velocity[i]);
+    }
     neighbours.find_pairs(world.bodies, world.walls, assignment, instances, world.parallel_min, world.step_count, lean);
     tables.buffers.resize(2 * instances.size());  // as tables.sets: instance m's balls at 2m, walls at 2m + 1
     const CarryContext carry{world.bodies, world.walls, world.parallel_min, lean, world.lean_rebuild_rows};
