@@ -5,6 +5,7 @@
 // image; the peculiar momentum is conserved; the same bits on 1 and 2
 // threads and after a checkpoint–restart.
 #include "simulation.hpp"
+#include "../support/periodic_cell.hpp"
 
 #include <plab_host/contacts.hpp>
 
@@ -20,29 +21,14 @@
 #endif
 
 using namespace plab;
+using namespace plab::testing_support;
 namespace fs = std::filesystem;
 
 namespace {
 
-const json kLinear = {{"kn", 1e4}, {"ks", 5e3}, {"fric", 0.5}, {"dp_nratio", 0.1}};
-
-// A scene in the cell [0, L]^dim, periodic along every axis and sheared at
-// `rate` (flow x, gradient y), the balls as given (no affine start).
+// The cell [0, L]^dim sheared at `rate`, the balls as given (no affine start).
 json sheared_scene(int dim, double L, double rate, json balls) {
-    auto v = [dim](double x) { return dim == 2 ? json::array({x, x}) : json::array({x, x, x}); };
-    json axes = dim == 2 ? json::array({"x", "y"}) : json::array({"x", "y", "z"});
-    return {{"dimension", dim},
-            {"plugins", {"linear"}},
-            {"domain", {{"min", v(0)}, {"max", v(L)}, {"periodic", axes},
-                        {"shear", {{"rate", rate}, {"initial_velocity", "as_given"}}}}},
-            {"bodies", std::move(balls)},
-            {"timestep", {{"fixed", 1e-5}}},
-            {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"}, {"properties", kLinear}}}}};
-}
-
-json ball(double x, double y, double vx, double vy, double spin) {
-    return {{"type", "ball"}, {"group", "g"}, {"position", {x, y}}, {"velocity", {vx, vy}},
-            {"angular_velocity", spin}, {"radius", 0.002}, {"density", 2500}};
+    return periodic_cell_scene(dim, L, std::move(balls), rate);
 }
 
 // A sheared periodic gas of 3D balls with seeded random velocities, no net
@@ -88,8 +74,7 @@ TEST_CASE("two balls touching across a sheared boundary feel the forces they fee
     auto run = [&](double y1, double image_shift) {
         const double y2 = y1 + dy - image_shift;
         const double vx2 = 1.01 - (image_shift > 0 ? rate * L : 0.0);
-        auto sim = std::make_unique<Simulation>(sheared_scene(
-            2, L, rate, json::array({ball(0.05, y1, 1.0, lift, 10.0), ball(0.05 + dx, y2, vx2, lift - 0.01, -5.0)})));
+        auto sim = std::make_unique<Simulation>(sheared_scene(2, L, rate, json::array({cell_ball(0.05, y1, 1.0, lift, 10.0), cell_ball(0.05 + dx, y2, vx2, lift - 0.01, -5.0)})));
         sim->set_quiet(true);
         sim->cycle(100);  // 1 ms: 2 mm up, the image slid 2 mm, the overlap still closed
         return sim;
@@ -125,7 +110,7 @@ TEST_CASE("a ball that crosses a sheared boundary comes back shifted by the offs
     // shear (x 0.05 and 0.03): the offset since the crossing is the slide of
     // the image.
     const double rate = 10, L = 0.1;
-    Simulation sim(sheared_scene(2, L, rate, json::array({ball(0.05, 0.095, 0.0, 1.0, 0.0), ball(0.03, 0.005, 0.0, -1.0, 0.0)})));
+    Simulation sim(sheared_scene(2, L, rate, json::array({cell_ball(0.05, 0.095, 0.0, 1.0, 0.0), cell_ball(0.03, 0.005, 0.0, -1.0, 0.0)})));
     sim.set_quiet(true);
     sim.cycle(2000);  // 0.02 s: 20 mm along y, the offset 20 mm
     const World& w = sim.world();
@@ -199,7 +184,7 @@ TEST_CASE("a sheared gas restarted from a checkpoint reaches the state of the un
 }
 
 TEST_CASE("a sheared cell starts the balls on the shear's flow unless told otherwise", "[periodic][shear]") {
-    json scene = sheared_scene(2, 0.1, 10.0, json::array({ball(0.05, 0.075, 0.0, 0.0, 0.0), ball(0.02, 0.025, 0.0, 0.0, 0.0)}));
+    json scene = sheared_scene(2, 0.1, 10.0, json::array({cell_ball(0.05, 0.075, 0.0, 0.0, 0.0), cell_ball(0.02, 0.025, 0.0, 0.0, 0.0)}));
     scene["domain"]["shear"].erase("initial_velocity");
     Simulation sim(scene);
     CHECK(sim.world().bodies.velocity[0].x() == Approx(0.25).epsilon(1e-12));  // rate (y - L/2)

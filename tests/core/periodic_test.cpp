@@ -4,6 +4,7 @@
 // across a wrap; a periodic gas conserves momentum; the same bits on 1 and 2
 // threads and after a checkpoint–restart.
 #include "simulation.hpp"
+#include "../support/periodic_cell.hpp"
 
 #include <plab_host/contacts.hpp>
 
@@ -19,34 +20,16 @@
 #endif
 
 using namespace plab;
+using namespace plab::testing_support;
 namespace fs = std::filesystem;
 
 namespace {
-
-const json kLinear = {{"kn", 1e4}, {"ks", 5e3}, {"fric", 0.5}, {"dp_nratio", 0.1}};
-
-// A scene in the cell [0, L]^dim, periodic along every axis, with `balls`.
-json periodic_scene(int dim, double L, json balls) {
-    auto v = [dim](double x) { return dim == 2 ? json::array({x, x}) : json::array({x, x, x}); };
-    json axes = dim == 2 ? json::array({"x", "y"}) : json::array({"x", "y", "z"});
-    return {{"dimension", dim},
-            {"plugins", {"linear"}},
-            {"domain", {{"min", v(0)}, {"max", v(L)}, {"periodic", axes}}},
-            {"bodies", std::move(balls)},
-            {"timestep", {{"fixed", 1e-5}}},
-            {"contact_models", {{{"groups", {"*", "*"}}, {"model", "linear"}, {"properties", kLinear}}}}};
-}
-
-json ball(double x, double y, double vx, double vy, double spin) {
-    return {{"type", "ball"}, {"group", "g"}, {"position", {x, y}}, {"velocity", {vx, vy}},
-            {"angular_velocity", spin}, {"radius", 0.002}, {"density", 2500}};
-}
 
 // A periodic gas of 3D balls with seeded random velocities.
 std::unique_ptr<Simulation> gas() {
     json fill = {{"type", "random_fill"}, {"group", "g"}, {"box", {{"min", {0, 0, 0}}, {"max", {0.03, 0.03, 0.03}}}},
                  {"radius", {0.0015, 0.0025}}, {"density", 2500}, {"count", 150}, {"seed", 7}};
-    auto sim = std::make_unique<Simulation>(periodic_scene(3, 0.03, json::array({fill})));
+    auto sim = std::make_unique<Simulation>(periodic_cell_scene(3, 0.03, json::array({fill})));
     sim->set_quiet(true);
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -63,7 +46,7 @@ Vec momentum(const World& w) {
 } // namespace
 
 TEST_CASE("a ball that leaves a periodic cell comes back on the other side with its velocity", "[periodic]") {
-    Simulation sim(periodic_scene(2, 0.1, json::array({ball(0.095, 0.05, 1.0, 0.5, 0.0), ball(0.03, 0.02, 0, 0, 0)})));
+    Simulation sim(periodic_cell_scene(2, 0.1, json::array({cell_ball(0.095, 0.05, 1.0, 0.5, 0.0), cell_ball(0.03, 0.02, 0, 0, 0)})));
     sim.set_quiet(true);
     sim.cycle(2000);  // 0.02 s: 0.02 m along x, 0.01 m along y
     const World& w = sim.world();
@@ -84,8 +67,8 @@ TEST_CASE("two balls touching across a periodic boundary feel the forces they fe
     auto run = [](double x1) {
         const double x2 = x1 + 0.0038;  // overlap 0.2 mm
         const double wrapped = x2 >= 0.1 ? x2 - 0.1 : x2;
-        auto sim = std::make_unique<Simulation>(periodic_scene(
-            2, 0.1, json::array({ball(x1, 0.05, 3.0, 0.01, 10.0), ball(wrapped, 0.05, 3.0, -0.01, -5.0)})));
+        auto sim = std::make_unique<Simulation>(periodic_cell_scene(
+            2, 0.1, json::array({cell_ball(x1, 0.05, 3.0, 0.01, 10.0), cell_ball(wrapped, 0.05, 3.0, -0.01, -5.0)})));
         sim->set_quiet(true);
         sim->cycle(100);  // 1 ms: 3 mm along x, the overlap still closed
         return sim;
@@ -178,7 +161,7 @@ TEST_CASE("the contact stress of a compressed periodic lattice, over the cell, i
                               {"radius", R}, {"density", 2500}, {"fix", {"all"}}});
     for (const char* component : {"xx", "yy", "xy"}) {
         INFO(component);
-        json scene = periodic_scene(2, L, bodies);
+        json scene = periodic_cell_scene(2, L, bodies);
         scene["contact_models"][0]["properties"] = {{"kn", 1e5}};
         scene["histories"] = {{"every", 1}, {"record", {{{"name", "s"}, {"quantity", "measure.contact_stress"},
                                                          {"with", {{"min", {0, 0}}, {"max", {L, L}}, {"component", component}}}}}}};
