@@ -115,3 +115,57 @@ TEST_CASE("XSPH smooths a shear wave across a periodic boundary as it does insid
     for (int r : {0, 1, 2, 17, 18, 19})  // within the kernel's support of y = 0
         for (int c = 0; c < 20; ++c) CHECK(std::fabs(row[r][c] + row[(r + 10) % 20][c]) <= 1e-9 * largest);
 }
+
+namespace {
+
+// A solid disc moving through a periodic block of SPH fluid at rest (the
+// unresolved coupling, coupling_fluid_particle), at (x, 0.0093).
+json disc_in_periodic_fluid(double x) {
+    const double h = 1.5 * dp;
+    const json sph = {{"smoothing_length", h}, {"kernel", "wendland_c2"}, {"rest_density", rho0}, {"speed_of_sound", 5.0},
+                      {"viscosity", "laminar"}, {"mu", 0.01}};
+    const json kernel = {{"smoothing_length", h}, {"kernel", "wendland_c2"}};
+    json drag = kernel;
+    drag.update({{"fluid_group", "fluid"}, {"solid_group", "solid"}, {"rest_density", rho0}, {"mu", 0.01}});
+    return {{"dimension", 2},
+            {"plugins", {"sph", "coupling_fluid_particle"}},
+            {"domain", {{"min", {0, 0}}, {"max", {20 * dp, 20 * dp}}, {"periodic", {"x", "y"}}}},
+            {"bodies", {{{"type", "lattice"}, {"group", "fluid"}, {"packing", "square"},
+                         {"box", {{"min", {0, 0}}, {"max", {20 * dp, 20 * dp}}}}, {"radius", dp / 2}, {"spacing", dp},
+                         {"mass", rho0 * dp * dp}, {"fix", {"rotation"}}},
+                        {{"type", "ball"}, {"group", "solid"}, {"position", {x, 0.0093}}, {"radius", 0.4 * dp},
+                         {"density", 2500}, {"velocity", {0.3, -0.1}}}}},
+            {"contact_models", {{{"groups", {"fluid", "fluid"}}, {"model", "sph"}, {"properties", sph}},
+                                {{"groups", {"fluid", "solid"}}, {"model", "fluid_particle"}, {"properties", kernel}}}},
+            {"passes", {{{"name", "sph_density_integration"}},
+                        {{"name", "sph_eos"}, {"properties", {{"rest_density", rho0}, {"speed_of_sound", 5.0}}}},
+                        {{"name", "fluid_particle_drag"}, {"properties", drag}}}}};
+}
+
+} // namespace
+
+TEST_CASE("the fluid-particle coupling sees the fluid across a periodic boundary as the fluid beside it",
+          "[periodic][coupling]") {
+    // The lattice is the same seen from x and from x + 10 dp: a disc on the
+    // boundary (its kernel support across it) and one in the middle feel
+    // the same fluid, voidage and drag.
+    struct Seen { double force_x, force_y, solid_fraction_sum; };
+    auto seen = [](double x) {
+        Simulation sim(disc_in_periodic_fluid(x));
+        sim.set_quiet(true);
+        World& w = sim.world();
+        w.step();
+        const std::size_t disc = w.bodies.size() - 1;
+        const auto& voidage = w.fields.column(w.fields.index("voidage"));
+        double sum = 0;
+        for (std::size_t i = 0; i < disc; ++i) sum += 1 - voidage[i];
+        return Seen{w.fields.column(w.fields.index("fp_force_x"))[disc],
+                    w.fields.column(w.fields.index("fp_force_y"))[disc], sum};
+    };
+    const Seen edge = seen(0.2 * dp), middle = seen(10.2 * dp);
+    REQUIRE(middle.solid_fraction_sum > 0);
+    REQUIRE(std::abs(middle.force_x) > 0);
+    CHECK(edge.solid_fraction_sum == Approx(middle.solid_fraction_sum).epsilon(1e-9));
+    CHECK(edge.force_x == Approx(middle.force_x).epsilon(1e-9));
+    CHECK(edge.force_y == Approx(middle.force_y).epsilon(1e-9));
+}
