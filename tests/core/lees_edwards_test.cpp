@@ -6,23 +6,17 @@
 // threads and after a checkpoint–restart.
 #include "simulation.hpp"
 #include "../support/periodic_cell.hpp"
+#include "../support/same_bits.hpp"
 
 #include <plab_host/contacts.hpp>
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <filesystem>
 #include <random>
-#include <unistd.h>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 using namespace plab;
 using namespace plab::testing_support;
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -149,37 +143,17 @@ TEST_CASE("a sheared granular gas conserves its peculiar momentum to round-off, 
 }
 
 TEST_CASE("a sheared gas gives bit-identical states with 1 and 2 threads", "[periodic][shear][determinism]") {
-    std::uint64_t hash[2];
-    for (int threads : {1, 2}) {
-#ifdef _OPENMP
-        omp_set_num_threads(threads);
-#endif
-        auto sim = sheared_gas();
-        sim->world().parallel_min = 0;
-        sim->cycle(600);
-        hash[threads - 1] = state_hash(sim->world());
-    }
-#ifdef _OPENMP
-    omp_set_num_threads(1);
-#endif
+    const auto hash = hashes_on_1_and_2_threads(sheared_gas, 600);
     CHECK(hash[0] == hash[1]);
 }
 
 TEST_CASE("a sheared gas restarted from a checkpoint reaches the state of the uninterrupted run", "[periodic][shear][restart]") {
-    const fs::path file = fs::temp_directory_path() / ("plab_sheared_" + std::to_string(::getpid()) + ".plab");
     auto whole = sheared_gas();
     whole->cycle(600);
-    {
-        auto first = sheared_gas();
-        first->cycle(301);
-        first->save_checkpoint(file.string());
-    }
-    auto resumed = Simulation::restart(file.string());
-    resumed->set_quiet(true);
+    auto resumed = restarted_after(sheared_gas, 301, "plab_sheared");
     CHECK(resumed->world().bodies.cell.sheared);
     CHECK(resumed->world().bodies.cell.shear_rate == 60.0);
     resumed->cycle(299);
-    fs::remove(file);
     CHECK(state_hash(resumed->world()) == state_hash(whole->world()));
 }
 

@@ -5,23 +5,17 @@
 // threads and after a checkpoint–restart.
 #include "simulation.hpp"
 #include "../support/periodic_cell.hpp"
+#include "../support/same_bits.hpp"
 
 #include <plab_host/contacts.hpp>
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <filesystem>
 #include <random>
-#include <unistd.h>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 using namespace plab;
 using namespace plab::testing_support;
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -114,36 +108,16 @@ TEST_CASE("a periodic granular gas conserves momentum to round-off, with contact
 }
 
 TEST_CASE("a periodic gas gives bit-identical states with 1 and 2 threads", "[periodic][determinism]") {
-    std::uint64_t hash[2];
-    for (int threads : {1, 2}) {
-#ifdef _OPENMP
-        omp_set_num_threads(threads);
-#endif
-        auto sim = gas();
-        sim->world().parallel_min = 0;
-        sim->cycle(600);
-        hash[threads - 1] = state_hash(sim->world());
-    }
-#ifdef _OPENMP
-    omp_set_num_threads(1);
-#endif
+    const auto hash = hashes_on_1_and_2_threads(gas, 600);
     CHECK(hash[0] == hash[1]);
 }
 
 TEST_CASE("a periodic gas restarted from a checkpoint reaches the state of the uninterrupted run", "[periodic][restart]") {
-    const fs::path file = fs::temp_directory_path() / ("plab_periodic_" + std::to_string(::getpid()) + ".plab");
     auto whole = gas();
     whole->cycle(600);
-    {
-        auto first = gas();
-        first->cycle(300);
-        first->save_checkpoint(file.string());
-    }
-    auto resumed = Simulation::restart(file.string());
-    resumed->set_quiet(true);
+    auto resumed = restarted_after(gas, 300, "plab_periodic");
     CHECK(resumed->world().bodies.cell.any());
     resumed->cycle(300);
-    fs::remove(file);
     CHECK(state_hash(resumed->world()) == state_hash(whole->world()));
 }
 
