@@ -16,7 +16,6 @@ namespace plab {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kCircleSides = 48;       // a circle's polygon on the surface
 // an icosahedron's subdivisions: a sphere shape's 320 triangles, a pebble's 80
 constexpr int kShapeSubdivisions = 2, kPebbleSubdivisions = 1;

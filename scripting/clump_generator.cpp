@@ -22,7 +22,6 @@ namespace plab {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kUnionTolerance = 1e-4;  // relative, of a pebble union's volume and inertia
 
 // A clump as its template: the clump at rest with its principal frame on

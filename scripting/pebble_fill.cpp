@@ -15,7 +15,6 @@ namespace plab {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 #ifdef PLAB_FUZZ_BUDGETS
 constexpr double kBudget = 1.0 / 50;  // the sanitized fuzz build runs ~100x slower: the same paths, smaller
 #else

@@ -17,7 +17,6 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // The triangle, turned if need be so that its normal points along `out`.
 Triangle facing(const Vec& a, const Vec& b, const Vec& c, const Vec& out) {

@@ -15,6 +15,7 @@ using Vec = Eigen::Vector3d;
 using BodyId = std::uint64_t;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = 3.14159265358979323846;
 
 // Loops shorter than this run on one thread: below it the fork–join barrier
 // costs more than the loop (measured at N = 1e3: 2 threads 1.5x faster than

@@ -9,7 +9,7 @@ namespace plab {
 
 namespace {
 
-inline void put(std::vector<double>& col, std::size_t k, const Vec& v) {
+inline void put_row3(std::vector<double>& col, std::size_t k, const Vec& v) {
     col[3 * k] = v.x(); col[3 * k + 1] = v.y(); col[3 * k + 2] = v.z();
 }
 
@@ -73,7 +73,7 @@ bool ball_wall_geometry(const Bodies& B, const Walls& walls, const ModelInstance
             const double dist = f.kind == FacetKind::plane ? ball_plane_distance(f, x, normal, s.interior[k])
                                                            : ball_facet_distance(f, x, normal, s.interior[k]);
             const double gap = dist - B.radius[s.end1[k]];
-            put(s.normal, k, normal);  // (the active rows' geometry below, and the next step's side)
+            put_row3(s.normal, k, normal);  // (the active rows' geometry below, and the next step's side)
             s.gap[k] = gap;
             s.distance[k] = dist;
             s.active[k] = in_range(s.history, k, dist, gap);
@@ -88,9 +88,9 @@ bool ball_wall_geometry(const Bodies& B, const Walls& walls, const ModelInstance
             const Vec normal(&s.normal[3 * k]);
             const Vec point = xi + normal * (ri + 0.5 * (dist - ri));
             const Vec vi = B.velocity[i] + B.angular_velocity[i].cross(point - xi);
-            put(s.point, k, point);
-            put(s.rel_velocity, k, walls.velocity_at(f.wall, point) - vi);
-            put(s.rel_angular_velocity, k, walls.walls[f.wall].angular_velocity - B.angular_velocity[i]);
+            put_row3(s.point, k, point);
+            put_row3(s.rel_velocity, k, walls.velocity_at(f.wall, point) - vi);
+            put_row3(s.rel_angular_velocity, k, walls.walls[f.wall].angular_velocity - B.angular_velocity[i]);
             clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, fill_pair_constants)
             exceeded |= -gap > inst.max_overlap * ri;
         }
@@ -126,10 +126,10 @@ bool ball_ball_rows(const Bodies& B, const ModelInstance& inst, ContactSet& s, s
             const std::int32_t i = s.end1[k], j = s.end2[k];
             const PairKinematics p = ball_pair_kinematics(B, i, j, seen_from<Periodic>(B, i, j), velocity_seen_from<Periodic>(B, i, j),
                                                             ri, s.distance[k], gap);
-            put(s.normal, k, p.normal);
-            put(s.point, k, p.point);
-            put(s.rel_velocity, k, p.rel_velocity);
-            put(s.rel_angular_velocity, k, p.rel_angular_velocity);
+            put_row3(s.normal, k, p.normal);
+            put_row3(s.point, k, p.point);
+            put_row3(s.rel_velocity, k, p.rel_velocity);
+            put_row3(s.rel_angular_velocity, k, p.rel_angular_velocity);
             clear_row_outputs(s, k);  // (radii and masses: filled at rebuild, fill_pair_constants)
             exceeded |= -gap > inst.max_overlap * std::min(ri, rj);
         }
