@@ -16,6 +16,14 @@
 //            2000, Islam eq. 16), f_ij = W(r)/W(dp). The force on end 2 is
 //            the pair's term with ∇_2 W_21 = (dW/dr) n; the host applies its
 //            opposite to end 1.
+// With `interactions` `pseudo_springs` (Islam §3.2–3.3, Chakraborty & Shaw
+// 2013) only the pairs a scene's `bond` command joined interact: the
+// immediate neighbours, a pseudo-spring each, with interaction factor
+// f_ij = 1 while the spring holds and 0, for good, once its strain
+// (r - r0)/r0 exceeds `failure_strain` (a spring fails in tension only).
+// The spring is the host's bond (persist slot), so a failure is recorded
+// as a bond break with its time and place; the rates stage counts each
+// particle's intact springs for the pass's damage D_i.
 // Conventions as the `sph` model: n from end 1 to end 2, x_2 - x_1 = r n,
 // v_rel = v_2 - v_1, dW/dr <= 0.
 #include <plab/sph/law.hpp>
@@ -37,6 +45,8 @@ namespace solid = plab::sph_solid::solid;
 namespace field = plab::sph_solid::field;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+// the `interactions` property's values, by index
+constexpr const char* interaction_names[] = {"kernel_support", "pseudo_springs"};
 
 // SymTensor from six consecutive fields starting at `first`, of end 1 or 2
 SymTensor sym_field(const Contact& c, int first, bool end2) {
@@ -72,7 +82,7 @@ struct SphSolid {
 
     enum Prop : int {
         smoothing_length, kernel, rest_density, youngs_modulus, poissons_ratio, particle_spacing, alpha, beta,
-        exponent, prop_count
+        exponent, interactions, failure_strain, prop_count
     };
     static constexpr plab_property_desc properties[] = {
         solid::smoothing_length, solid::kernel, solid::rest_density, solid::youngs_modulus, solid::poissons_ratio,
@@ -84,11 +94,18 @@ struct SphSolid {
         plab::prop::number("artificial_stress_exponent", "artificial stress exponent n", "1", 4.0, 0.0, 64.0, 0,
          "n of (W(r)/W(dp))^n (Monaghan 2000: 4; see physics/sph_solid/README.md on Islam eq. 16); the "
          "coefficient epsilon is the sph_solid_stress pass's"),
+        plab::prop::choice("interactions", "interacting pairs", interaction_names, 0,
+         "kernel_support: every pair within the kernel support; pseudo_springs: only the pairs a bond command "
+         "joined (the immediate neighbours: gap <= about 0.5 dp on a square or hexagonal lattice), each until its "
+         "spring fails (Islam sec. 3.2-3.3)"),
+        plab::prop::number("failure_strain", "pseudo-spring failure strain eps_f", "1", inf, 0.0, inf, PLAB_MIN_EXCLUSIVE,
+         "a spring fails for good when (r - r0)/r0 > eps_f, r0 its length when bonded (Islam sec. 3.3, sec. 5.5: "
+         "0.05); with pseudo_springs only"),
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 
     // Read: the density, σ B/ρ² (nine components, the pass's) and R (six);
-    // the host passes at most 16.
+    // the host passes at most 24.
     enum Field : int { density, stress_term = 1, artificial = 10 };
     static constexpr plab_field_desc fields_read[] = {
         field::density,
@@ -96,17 +113,27 @@ struct SphSolid {
         field::stress_term[5], field::stress_term[6], field::stress_term[7], field::stress_term[8],
         field::artificial_stress[0], field::artificial_stress[1], field::artificial_stress[2],
         field::artificial_stress[3], field::artificial_stress[4], field::artificial_stress[5]};
-    // Accumulated in the rates stage: dρ/dt, A (six), the raw velocity-gradient sum (nine).
-    enum Acc : int { drho_dt, moment = 1, gradient = 7 };
+    // Accumulated in the rates stage: dρ/dt, A (six), the raw velocity-gradient
+    // sum (nine), the intact springs.
+    enum Acc : int { drho_dt, moment = 1, gradient = 7, springs = 16 };
     static constexpr plab_field_desc fields_accumulated[] = {
         field::drho_dt,
         field::moment_matrix[0], field::moment_matrix[1], field::moment_matrix[2], field::moment_matrix[3],
         field::moment_matrix[4], field::moment_matrix[5],
         field::velocity_gradient[0], field::velocity_gradient[1], field::velocity_gradient[2],
         field::velocity_gradient[3], field::velocity_gradient[4], field::velocity_gradient[5],
-        field::velocity_gradient[6], field::velocity_gradient[7], field::velocity_gradient[8]};
+        field::velocity_gradient[6], field::velocity_gradient[7], field::velocity_gradient[8],
+        field::intact_springs};
 
     static constexpr bool rates_stage = true;
+
+    // The pseudo-spring of a bonded pair (interactions pseudo_springs).
+    enum Slot : int { spring_state, rest_length, slot_count };
+    static constexpr plab_history_desc history[] = {
+        plab::history_desc("spring_state", 0.0, PLAB_SWAP_KEEP, "1 an intact pseudo-spring, 0 none or failed"),
+        plab::history_desc("rest_length", 0.0, PLAB_SWAP_KEEP, "the spring's length r0 when bonded, m (0: not yet)"),
+    };
+    static constexpr int persist_slot = spring_state;
 
     static double activity_range(const double* p) {
         return plab::sph::support_factor(KernelKind(int(p[kernel]))) * p[smoothing_length];
@@ -114,7 +141,8 @@ struct SphSolid {
 
     explicit SphSolid(const double* p)
         : kind_(KernelKind(int(p[kernel]))), h_(p[smoothing_length]), rho0_(p[rest_density]),
-          support_(activity_range(p)), exponent_(p[exponent]), dp_(p[particle_spacing]) {
+          support_(activity_range(p)), exponent_(p[exponent]), dp_(p[particle_spacing]),
+          failure_strain_(p[failure_strain]), springs_only_(int(p[interactions]) == 1) {
         if (exponent_ == std::floor(exponent_)) whole_exponent_ = int(exponent_);
         const auto m = plab::sph_solid::moduli(p[youngs_modulus], p[poissons_ratio], rho0_);
         wave_speed_ = m.wave_speed;
@@ -144,6 +172,7 @@ private:
     // (= -V_other (dW/dr) v_rel ⊗ n for either end) and A_i.
     void rates(const Contact& c) const {
         const double r = c.distance();
+        if (springs_only_ && !spring_holds(c, r)) return;
         if (r >= support_) return;
         const double dW = dw_dr(c.dim(), r);
         const Vec3 n = c.normal(), v = c.rel_velocity();
@@ -171,6 +200,7 @@ private:
     void forces(const Contact& c) const {
         const double r = c.distance();
         c.set_dt_limit(step_limit(plab::norm(c.rel_velocity())));
+        if (springs_only_ && !(c.history(spring_state) > 0)) return;  // f_ij = 0
         if (r >= support_) return;
         const int dim = c.dim();
         const Vec3 n = c.normal();
@@ -191,6 +221,25 @@ private:
         c.set_force(c.mass1() * c.mass2() * f);
     }
 
+    // Islam §3.3: f_ij = 1 while the pair's spring holds. Called once a step
+    // (the rates stage, where the host keeps history): sets r0 at the
+    // first call after bonding, counts the intact spring at both ends, and
+    // marks a spring strained past eps_f broken (-1: the host records the
+    // break and clears the state).
+    bool spring_holds(const Contact& c, double r) const {
+        double& state = c.history(spring_state);
+        if (!(state > 0)) return false;
+        double& r0 = c.history(rest_length);
+        if (r0 == 0) r0 = r;
+        if ((r - r0) > failure_strain_ * r0) {
+            state = -1;
+            return false;
+        }
+        c.accumulate1(springs, 1.0);
+        c.accumulate2(springs, 1.0);
+        return true;
+    }
+
     // f^n: a whole n (Monaghan's 4) by multiplication, a tenth of std::pow's cost
     double power(double f) const {
         if (whole_exponent_ < 0) return std::pow(f, exponent_);
@@ -200,7 +249,8 @@ private:
     }
 
     KernelKind kind_;
-    double h_, rho0_, support_, exponent_, dp_, wave_speed_ = 0;
+    double h_, rho0_, support_, exponent_, dp_, failure_strain_, wave_speed_ = 0;
+    bool springs_only_;
     int whole_exponent_ = -1;  // n when it is a whole number, else -1
     plab::sph::LawParams viscosity_;  // the fields monaghan() reads: h, c0 (the wave speed), alpha, beta, eta2
 };

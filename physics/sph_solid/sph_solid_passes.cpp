@@ -11,6 +11,7 @@
 //   σ    = S - p I,  p = K (ρ/ρ0 - 1)             (Islam §3.1)
 //   R    = Monaghan's artificial stress of σ       (Islam eq. 16; Gray et al. 2001)
 //   σ B/ρ², the particle's factor in the momentum equation (eq. 15), for the law
+//   D    = 1 - intact/initial springs          (Islam §3.3; with pseudo-springs)
 // the leapfrog's order for a state integrated beside it, as the SPH
 // fluid's density: the rates at x(t+dt) and v(t+dt/2) give the state at
 // t + dt, which the forces of the same step then use.
@@ -78,7 +79,7 @@ struct SphSolidStress {
 
     enum Field : int {
         density, drho_dt, pressure, deviatoric = 3, stress = 9, artificial = 15, moment = 21, correction = 27,
-        gradient = 33, stress_term = 42, field_count = 51
+        gradient = 33, stress_term = 42, intact_springs = 51, initial_springs, damage, field_count
     };
 #define PLAB_SIX(a) a[0], a[1], a[2], a[3], a[4], a[5]
     static constexpr plab_field_desc fields[] = {
@@ -89,7 +90,8 @@ struct SphSolidStress {
         field::velocity_gradient[3], field::velocity_gradient[4], field::velocity_gradient[5],
         field::velocity_gradient[6], field::velocity_gradient[7], field::velocity_gradient[8],
         field::stress_term[0], field::stress_term[1], field::stress_term[2], field::stress_term[3], field::stress_term[4],
-        field::stress_term[5], field::stress_term[6], field::stress_term[7], field::stress_term[8]};
+        field::stress_term[5], field::stress_term[6], field::stress_term[7], field::stress_term[8],
+        field::intact_springs, field::initial_springs, field::damage};
 #undef PLAB_SIX
     static_assert(sizeof(fields) / sizeof(fields[0]) == field_count, "one description per field");
 
@@ -137,6 +139,17 @@ private:
                 f[stress_term + 3 * a + c][i] = t / (rho * rho);
             }
         store_sym(f, artificial, i, plab::sph_solid::artificial_stress(sigma, rho, epsilon_));
+        update_damage(f, i);
+    }
+
+    // Islam §3.3: D_i, the failed fraction of the springs the particle had.
+    // Springs are only ever lost after the bond command made them, so the
+    // most ever counted is the initial number, whenever the command ran.
+    static void update_damage(double* const* f, std::size_t i) {
+        const double intact = f[intact_springs][i];
+        double& initial = f[initial_springs][i];
+        if (intact > initial) initial = intact;
+        f[damage][i] = initial > 0 ? 1.0 - intact / initial : 0.0;
     }
 
     double rho0_;

@@ -33,7 +33,7 @@ struct DenseBatch;  // forces/packed_batch.hpp: the active rows of one batch, pa
 // columns in its `fields_read` order, and which of them hold their
 // default at every body (plab_contact_batch::body_fields_at_default).
 struct ReadFields {
-    static constexpr std::size_t kMax = 16;  // (World::add_instance refuses more)
+    static constexpr std::size_t kMax = 24;  // (World::add_instance refuses more)
     static_assert(kMax <= 64, "one bit of at_default per field");
     const double* cols[kMax] = {};
     std::uint64_t at_default = 0;

@@ -87,6 +87,12 @@ inline constexpr plab_field_desc stress_term[9] = {
     plab::field_desc("sph_solid_stress_term_yy", "m5/(kg s2)", 0.0), plab::field_desc("sph_solid_stress_term_yz", "m5/(kg s2)", 0.0),
     plab::field_desc("sph_solid_stress_term_zx", "m5/(kg s2)", 0.0), plab::field_desc("sph_solid_stress_term_zy", "m5/(kg s2)", 0.0),
     plab::field_desc("sph_solid_stress_term_zz", "m5/(kg s2)", 0.0)};
+// Pseudo-springs (Islam §3.3): the intact springs of a particle, counted by
+// the law in the rates stage; the most it has had (its springs when
+// bonded) and its damage D = 1 - intact/initial, kept by the pass.
+inline constexpr plab_field_desc intact_springs = plab::field_desc("sph_solid_intact_springs", "1", 0.0);
+inline constexpr plab_field_desc initial_springs = plab::field_desc("sph_solid_initial_springs", "1", 0.0);
+inline constexpr plab_field_desc damage = plab::field_desc("sph_solid_damage", "1", 0.0);
 } // namespace field
 
 } // namespace plab::sph_solid
