@@ -139,7 +139,7 @@ TEST_CASE("the dam break runs through the wall impact to t = 0.5 s (sph)", "[exa
 // particle count. In both the water pushes the free end downstream (+x) from
 // the first steps: 0.12 mm (linear_pbond) and 0.31 mm (sph_solid) at 2 ms,
 // where a gate the water did not push would move by gravity alone (x ~ 0).
-TEST_CASE("the teaching gate runs with either structure model and the water pushes its free end out", "[examples][sph]") {
+TEST_CASE("the teaching gate example runs with either structure model and the water pushes its free end out", "[examples][sph]") {
     const fs::path dir = fs::path(PLAB_SOURCE_DIR) / "examples" / "teaching" / "gate_models";
     const json base = read_scene_file((dir / "gate.json").string());
     json swapped = base;
