@@ -16,6 +16,20 @@
 //            2000, Islam eq. 16), f_ij = W(r)/W(dp). The force on end 2 is
 //            the pair's term with ∇_2 W_21 = (dW/dr) n; the host applies its
 //            opposite to end 1.
+//            With `hourglass` α_HG > 0, a pair penalty on the part of the pair's
+//            separation that the two particles' velocity gradients do not
+//            predict (hourglass control in the form of Ganzenmüller 2015, "An
+//            hourglass control algorithm for Lagrangian SPH", CMAME 286: his
+//            error of the pair vector against F X, here in rate form; the
+//            paper's equation numbers are not checked here), per pair:
+//              dδ/dt = n·(½ (l_1 + l_2) x_21) - n·v_21 = r nᵀ ½(l_1 + l_2) n - v_rel·n,
+//              δ integrated in the contact's history from 0 when the pair meets,
+//              F_2 = -F_1 = α_HG E V_1 V_2 W(r)/r² δ n       (restoring; antisymmetric)
+//            δ stays zero in any linear velocity field (uniform strain, rigid
+//            motion), where the corrected l is exact; it grows for the
+//            column-to-column zig-zag of nodal integration and for the part of
+//            a bending field the first-order corrected l misses at a free
+//            surface (physics/sph_solid/README.md, "too soft in bending").
 // With `interactions` `pseudo_springs` (Islam §3.2–3.3, Chakraborty & Shaw
 // 2013) only the pairs a scene's `bond` command joined interact: the
 // immediate neighbours, a pseudo-spring each, with interaction factor
@@ -82,7 +96,7 @@ struct SphSolid {
 
     enum Prop : int {
         smoothing_length, kernel, rest_density, youngs_modulus, poissons_ratio, particle_spacing, alpha, beta,
-        exponent, interactions, failure_strain, prop_count
+        exponent, hourglass, interactions, failure_strain, prop_count
     };
     static constexpr plab_property_desc properties[] = {
         solid::smoothing_length, solid::kernel, solid::rest_density, solid::youngs_modulus, solid::poissons_ratio,
@@ -94,6 +108,9 @@ struct SphSolid {
         plab::prop::number("artificial_stress_exponent", "artificial stress exponent n", "1", 4.0, 0.0, 64.0, 0,
          "n of (W(r)/W(dp))^n (Monaghan 2000: 4; see physics/sph_solid/README.md on Islam eq. 16); the "
          "coefficient epsilon is the sph_solid_stress pass's"),
+        plab::prop::number("hourglass", "hourglass control coefficient alpha_HG", "1", 0.0, 0.0, 1000.0, 0,
+         "pair penalty alpha_HG E V_i V_j W/r^2 delta on the pair separation delta that the mean velocity gradient "
+         "does not predict (Ganzenmueller 2015, rate form; physics/sph_solid/README.md); 0 off"),
         plab::prop::choice("interactions", "interacting pairs", interaction_names, 0,
          "kernel_support: every pair within the kernel support; pseudo_springs: only the pairs a bond command "
          "joined (the immediate neighbours: gap <= about 0.5 dp on a square or hexagonal lattice), each until its "
@@ -104,15 +121,19 @@ struct SphSolid {
     };
     static_assert(sizeof(properties) / sizeof(properties[0]) == prop_count, "one description per property");
 
-    // Read: the density, σ B/ρ² (nine components, the pass's) and R (six);
-    // the host passes at most 24.
-    enum Field : int { density, stress_term = 1, artificial = 10 };
+    // Read: the density, σ B/ρ² (nine components, the pass's), R (six) and
+    // the corrected velocity gradient l (nine, the pass's; hourglass control
+    // only); the host passes at most 32.
+    enum Field : int { density, stress_term = 1, artificial = 10, velocity_gradient = 16 };
     static constexpr plab_field_desc fields_read[] = {
         field::density,
         field::stress_term[0], field::stress_term[1], field::stress_term[2], field::stress_term[3], field::stress_term[4],
         field::stress_term[5], field::stress_term[6], field::stress_term[7], field::stress_term[8],
         field::artificial_stress[0], field::artificial_stress[1], field::artificial_stress[2],
-        field::artificial_stress[3], field::artificial_stress[4], field::artificial_stress[5]};
+        field::artificial_stress[3], field::artificial_stress[4], field::artificial_stress[5],
+        field::velocity_gradient[0], field::velocity_gradient[1], field::velocity_gradient[2],
+        field::velocity_gradient[3], field::velocity_gradient[4], field::velocity_gradient[5],
+        field::velocity_gradient[6], field::velocity_gradient[7], field::velocity_gradient[8]};
     // Accumulated in the rates stage: dρ/dt, A (six), the raw velocity-gradient
     // sum (nine), the intact springs.
     enum Acc : int { drho_dt, moment = 1, gradient = 7, springs = 16 };
@@ -127,11 +148,16 @@ struct SphSolid {
 
     static constexpr bool rates_stage = true;
 
-    // The pseudo-spring of a bonded pair (interactions pseudo_springs).
-    enum Slot : int { spring_state, rest_length, slot_count };
+    // The pseudo-spring of a bonded pair (interactions pseudo_springs), and
+    // the hourglass control's δ of the pair (m), zero when the pair meets,
+    // symmetric in the ends (n and v_rel both turn).
+    enum Slot : int { spring_state, rest_length, hourglass_error, slot_count };
     static constexpr plab_history_desc history[] = {
         plab::history_desc("spring_state", 0.0, PLAB_SWAP_KEEP, "1 an intact pseudo-spring, 0 none or failed"),
         plab::history_desc("rest_length", 0.0, PLAB_SWAP_KEEP, "the spring's length r0 when bonded, m (0: not yet)"),
+        plab::history_desc("hourglass_error", 0.0, PLAB_SWAP_KEEP,
+                           "delta of the hourglass control: the pair's separation predicted by the mean velocity "
+                           "gradient less the actual one, integrated (m)"),
     };
     static constexpr int persist_slot = spring_state;
 
@@ -142,7 +168,8 @@ struct SphSolid {
     explicit SphSolid(const double* p)
         : kind_(KernelKind(int(p[kernel]))), h_(p[smoothing_length]), rho0_(p[rest_density]),
           support_(activity_range(p)), exponent_(p[exponent]), dp_(p[particle_spacing]),
-          failure_strain_(p[failure_strain]), springs_only_(int(p[interactions]) == 1) {
+          hourglass_(p[hourglass] * p[youngs_modulus]), failure_strain_(p[failure_strain]),
+          springs_only_(int(p[interactions]) == 1) {
         if (exponent_ == std::floor(exponent_)) whole_exponent_ = int(exponent_);
         const auto m = plab::sph_solid::moduli(p[youngs_modulus], p[poissons_ratio], rho0_);
         wave_speed_ = m.wave_speed;
@@ -218,7 +245,25 @@ private:
             f += fn * times(rsum, g);
         }
         if (dim == 2) f.z = 0;  // (a 2D world's tensors have no xz, yz parts; a harness's may)
-        c.set_force(c.mass1() * c.mass2() * f);
+        Vec3 force = c.mass1() * c.mass2() * f;
+        if (hourglass_ > 0) force += hourglass_force(c, r, n, rho1, rho2);
+        c.set_force(force);
+    }
+
+    // The hourglass control's pair force on end 2 (the file header): δ
+    // advanced by dt dδ/dt at this step's positions and half-step velocities,
+    // as the pass advances the stress, then α_HG E V_1 V_2 W(r)/r² δ n.
+    Vec3 hourglass_force(const Contact& c, double r, const Vec3& n, double rho1, double rho2) const {
+        const double na[3] = {n.x, n.y, n.z};
+        double nln = 0;  // nᵀ ½(l_1 + l_2) n
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b)
+                nln += na[a] * 0.5 * (c.field1(velocity_gradient + 3 * a + b) + c.field2(velocity_gradient + 3 * a + b)) * na[b];
+        double& delta = c.history(hourglass_error);
+        delta += c.dt() * (r * nln - plab::dot(c.rel_velocity(), n));
+        const double w = plab::sph::Kernel{kind_, c.dim(), h_}.value(r);
+        const double v1 = c.mass1() / rho1, v2 = c.mass2() / rho2;
+        return hourglass_ * v1 * v2 * w / (r * r) * delta * n;
     }
 
     // Islam §3.3: f_ij = 1 while the pair's spring holds. Called once a step
@@ -249,7 +294,8 @@ private:
     }
 
     KernelKind kind_;
-    double h_, rho0_, support_, exponent_, dp_, failure_strain_, wave_speed_ = 0;
+    double h_, rho0_, support_, exponent_, dp_, hourglass_;  // hourglass_: α_HG E
+    double failure_strain_, wave_speed_ = 0;
     bool springs_only_;
     int whole_exponent_ = -1;  // n when it is a whole number, else -1
     plab::sph::LawParams viscosity_;  // the fields monaghan() reads: h, c0 (the wave speed), alpha, beta, eta2

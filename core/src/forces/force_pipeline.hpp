@@ -33,7 +33,9 @@ struct DenseBatch;  // forces/packed_batch.hpp: the active rows of one batch, pa
 // columns in its `fields_read` order, and which of them hold their
 // default at every body (plab_contact_batch::body_fields_at_default).
 struct ReadFields {
-    static constexpr std::size_t kMax = 24;  // (World::add_instance refuses more)
+    // 32: the SPH solid with hourglass control reads its density, sigma B/rho^2 (9),
+    // the artificial stress (6) and the velocity gradient (9), 25 in all
+    static constexpr std::size_t kMax = 32;  // (World::add_instance refuses more)
     static_assert(kMax <= 64, "one bit of at_default per field");
     const double* cols[kMax] = {};
     std::uint64_t at_default = 0;
