@@ -128,15 +128,9 @@ TEST_CASE("a sheared granular gas conserves its peculiar momentum to round-off, 
     auto sim = sheared_gas();
     const World& w = sim->world();
     const Vec p0 = peculiar_momentum(w);
-    double scale = 0;
-    for (std::size_t i = 0; i < w.bodies.size(); ++i) scale += w.bodies.mass[i] * w.bodies.velocity[i].norm();
-    std::size_t across = 0;
-    for (int block = 0; block < 20; ++block) {
-        sim->cycle(50);
-        const ContactTable t = w.model(0).balls();
-        for (std::size_t k = 0; k < t.size(); ++k)
-            if (t.active(k) && std::fabs(w.bodies.position[t.end2(k)].y() - w.bodies.position[t.end1(k)].y()) > 0.015) ++across;
-    }
+    const double scale = momentum_scale(w);
+    const std::size_t across = cycle_counting_across(
+        *sim, 20, 50, [](const Vec& x1, const Vec& x2) { return std::fabs(x2.y() - x1.y()) > 0.015; });
     CHECK(across > 0);
     CHECK(w.bodies.cell.shear_offset > 0);
     CHECK((peculiar_momentum(w) - p0).norm() <= 1e-12 * scale);

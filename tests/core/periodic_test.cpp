@@ -94,15 +94,9 @@ TEST_CASE("a periodic granular gas conserves momentum to round-off, with contact
     auto sim = gas();
     const World& w = sim->world();
     const Vec p0 = momentum(w);
-    double scale = 0;
-    for (std::size_t i = 0; i < w.bodies.size(); ++i) scale += w.bodies.mass[i] * w.bodies.velocity[i].norm();
-    std::size_t across = 0;
-    for (int block = 0; block < 20; ++block) {
-        sim->cycle(50);
-        const ContactTable t = w.model(0).balls();
-        for (std::size_t k = 0; k < t.size(); ++k)
-            if (t.active(k) && (w.bodies.position[t.end2(k)] - w.bodies.position[t.end1(k)]).norm() > 0.015) ++across;
-    }
+    const double scale = momentum_scale(w);
+    const std::size_t across =
+        cycle_counting_across(*sim, 20, 50, [](const Vec& x1, const Vec& x2) { return (x2 - x1).norm() > 0.015; });
     CHECK(across > 0);
     CHECK((momentum(w) - p0).norm() <= 1e-13 * scale);
 }

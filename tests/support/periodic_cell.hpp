@@ -4,6 +4,8 @@
 
 #include "simulation.hpp"
 
+#include <plab_host/contacts.hpp>
+
 #include <utility>
 
 namespace plab::testing_support {
@@ -29,6 +31,28 @@ inline json periodic_cell_scene(int dim, double L, json balls, double shear_rate
 inline json cell_ball(double x, double y, double vx, double vy, double spin) {
     return {{"type", "ball"}, {"group", "g"}, {"position", {x, y}}, {"velocity", {vx, vy}},
             {"angular_velocity", spin}, {"radius", 0.002}, {"density", 2500}};
+}
+
+// Σ m |v|: the scale against which momentum round-off is judged.
+inline double momentum_scale(const World& w) {
+    double scale = 0;
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) scale += w.bodies.mass[i] * w.bodies.velocity[i].norm();
+    return scale;
+}
+
+// Runs `blocks` blocks of `steps` cycles and counts, after each, the active
+// contacts of model 0 whose two stored centres `across(x1, x2)` calls far
+// apart: pairs that meet through the boundary.
+template <class Across> std::size_t cycle_counting_across(Simulation& sim, int blocks, int steps, Across across) {
+    const World& w = sim.world();
+    std::size_t n = 0;
+    for (int block = 0; block < blocks; ++block) {
+        sim.cycle(steps);
+        const ContactTable t = w.model(0).balls();
+        for (std::size_t k = 0; k < t.size(); ++k)
+            if (t.active(k) && across(w.bodies.position[t.end1(k)], w.bodies.position[t.end2(k)])) ++n;
+    }
+    return n;
 }
 
 } // namespace plab::testing_support
