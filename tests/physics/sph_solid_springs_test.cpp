@@ -8,6 +8,7 @@
 // same bits on 1 and 2 threads and after a restart.
 #include "simulation.hpp"
 #include "../support/same_bits.hpp"
+#include "../support/sph_solid_block.hpp"
 
 #include <plab/sph_solid/elasticity.hpp>
 
@@ -21,47 +22,25 @@ using namespace plab::testing_support;
 
 namespace {
 
-constexpr double kSpringE = 2e6, kSpringNu = 0.3, kSpringRho = 1000, kSpringDp = 0.002;
-
-json spring_material() {
-    return {{"groups", {"solid"}}, {"rest_density", kSpringRho}, {"youngs_modulus", kSpringE},
-            {"poissons_ratio", kSpringNu}, {"smoothing_length", 1.3 * kSpringDp}, {"particle_spacing", kSpringDp}};
-}
-
 // An n-a-side block (2D square, 3D cubic lattice) of SPH solid with
 // pseudo-springs between immediate neighbours (gap <= 0.5 dp in 2D, 0.75 dp
 // in 3D: the diagonals of the square and of the cube), every particle
 // moving with the held velocity `profile` for `cycles` steps of dt.
 json spring_block(int dim, int n, const json& profile, int cycles, double dt, double failure_strain) {
-    const double side = n * kSpringDp;
-    const json box = dim == 2 ? json{{"min", {0, 0}}, {"max", {side, side}}}
-                              : json{{"min", {0, 0, 0}}, {"max", {side, side, side}}};
-    json body = {{"type", "lattice"}, {"group", "solid"}, {"packing", dim == 2 ? "square" : "cubic"}, {"box", box},
-                 {"radius", kSpringDp / 2}, {"spacing", kSpringDp}, {"mass", kSpringRho * std::pow(kSpringDp, dim)},
-                 {"fix", {"rotation"}}};
-    const json all = dim == 2 ? json{{"min", {-1, -1}}, {"max", {1, 1}}} : json{{"min", {-1, -1, -1}}, {"max", {1, 1, 1}}};
-    json model = {{"groups", {"solid", "solid"}}, {"model", "sph_solid"},
-                  {"properties", {{"alpha", 0.0}, {"interactions", "pseudo_springs"}}}};
-    if (failure_strain > 0) model["properties"]["failure_strain"] = failure_strain;
-    return {{"dimension", dim},
-            {"plugins", {"sph_solid"}},
-            {"bodies", {body}},
-            {"materials", {{"steel", spring_material()}}},
-            {"contact_models", {model}},
-            {"passes", {{{"name", "sph_solid_stress"}, {"material", "steel"}, {"properties", {{"artificial_stress", 0.0}}}}}},
-            {"timestep", {{"fixed", dt}}},
-            {"commands", {{{"bond", {{"groups", {"solid", "solid"}}, {"gap", (dim == 2 ? 0.5 : 0.75) * kSpringDp}}}},
-                          {{"set", {{"region", all}, {"velocity_profile", profile}, {"fix", {"all"}}}}},
-                          {{"cycle", cycles}}}}};
+    json scene = moving_block(dim, profile, cycles, dt, true, n);
+    json& properties = scene["contact_models"][0]["properties"];
+    properties["interactions"] = "pseudo_springs";
+    if (failure_strain > 0) properties["failure_strain"] = failure_strain;
+    const json bond = {{"bond", {{"groups", {"solid", "solid"}}, {"gap", (dim == 2 ? 0.5 : 0.75) * kDp}}}};
+    scene["commands"].insert(scene["commands"].begin(), bond);
+    return scene;
 }
-
-double field_at(const World& w, const std::string& name, std::size_t i) { return w.fields.column(w.fields.index(name))[i]; }
 
 // how many of a particle's lattice coordinates (of n) lie on the block's faces
 int on_faces(const World& w, std::size_t i, int dim, int n) {
     int faces = 0;
     for (int a = 0; a < dim; ++a) {
-        const long c = std::lround(w.bodies.position[i][a] / kSpringDp - 0.5);
+        const long c = std::lround(w.bodies.position[i][a] / kDp - 0.5);
         faces += c == 0 || c == n - 1;
     }
     return faces;
@@ -71,7 +50,7 @@ int on_faces(const World& w, std::size_t i, int dim, int n) {
 
 TEST_CASE("sph_solid pseudo-springs: a stretched block carries Hooke's stress through its immediate neighbours alone",
           "[sph_solid][pseudo_springs]") {
-    const double bulk = kSpringE / (3 * (1 - 2 * kSpringNu)), shear = kSpringE / (2 * (1 + kSpringNu));
+    const double bulk = kE / (3 * (1 - 2 * kNu)), shear = kE / (2 * (1 + kNu));
     const double rate = 1.0, dt = 1e-5;
     const int cycles = 100;
     for (int dim : {2, 3}) {
@@ -115,7 +94,7 @@ TEST_CASE("sph_solid pseudo-springs: springs fail at the strain their direction 
     for (const BondBreak& b : w.bond_breaks) CHECK(b.time == Approx(0.05 / rate).margin(2 * dt));
     for (std::size_t i = 0; i < w.bodies.size(); ++i) {
         INFO("particle " << i << " at " << w.bodies.position[i].transpose());
-        const long cx = std::lround(w.bodies.position[i].x() / (kSpringDp * 1.07) - 0.5);
+        const long cx = std::lround(w.bodies.position[i].x() / (kDp * 1.07) - 0.5);
         const bool x_end = cx == 0 || cx == n - 1;
         const double initial = field_at(w, "sph_solid_initial_springs", i);
         const double lost_x = x_end ? 1 : 2;  // its springs along x
@@ -129,12 +108,12 @@ namespace {
 // it cracks within a few hundred steps.
 std::unique_ptr<Simulation> pulled_bar() {
     json scene = spring_block(2, 4, json{"0", "0"}, 0, 0, 0.02);
-    scene["bodies"][0]["box"]["max"] = {24 * kSpringDp, 4 * kSpringDp};
+    scene["bodies"][0]["box"]["max"] = {24 * kDp, 4 * kDp};
     scene["timestep"] = {{"fixed", 1e-5}};
     scene["commands"] = {
-        {{"bond", {{"groups", {"solid", "solid"}}, {"gap", 0.5 * kSpringDp}}}},
-        {{"set", {{"region", {{"min", {-1, -1}}, {"max", {kSpringDp, 1}}}}, {"velocity", {-0.5, 0}}, {"fix", {"all"}}}}},
-        {{"set", {{"region", {{"min", {23 * kSpringDp, -1}}, {"max", {1, 1}}}}, {"velocity", {0.5, 0}}, {"fix", {"all"}}}}}};
+        {{"bond", {{"groups", {"solid", "solid"}}, {"gap", 0.5 * kDp}}}},
+        {{"set", {{"region", {{"min", {-1, -1}}, {"max", {kDp, 1}}}}, {"velocity", {-0.5, 0}}, {"fix", {"all"}}}}},
+        {{"set", {{"region", {{"min", {23 * kDp, -1}}, {"max", {1, 1}}}}, {"velocity", {0.5, 0}}, {"fix", {"all"}}}}}};
     auto sim = std::make_unique<Simulation>(scene);
     sim->set_quiet(true);
     sim->run();

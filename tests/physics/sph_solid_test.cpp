@@ -6,6 +6,7 @@
 // gets no deviatoric stress, the pair forces conserve momentum, in 2D and
 // 3D; a Poisson's ratio of 0.5 is refused naming its path and range.
 #include "simulation.hpp"
+#include "../support/sph_solid_block.hpp"
 
 #include <plab/sph/kernels.hpp>
 #include <plab/sph_solid/elasticity.hpp>
@@ -16,6 +17,7 @@
 #include <random>
 
 using namespace plab;
+using namespace plab::testing_support;
 using sph_solid::SymTensor;
 using sph_solid::Tensor;
 
@@ -96,35 +98,8 @@ TEST_CASE("sph_solid: principal stresses rebuild the tensor, and artificial stre
 
 namespace {
 
-constexpr double kE = 2e6, kNu = 0.3, kRho = 1000, kDp = 0.002;
-
-// A block of SPH solid, 10 particles a side (6 in 3D), every particle fixed
-// and moving with the velocity `profile` (expressions of x, y, z) for
-// `cycles` steps of dt.
-json moving_block(int dim, const json& profile, int cycles, double dt, bool fixed = true) {
-    const int n = dim == 2 ? 10 : 6;
-    const double side = n * kDp;
-    const json box = dim == 2 ? json{{"min", {0, 0}}, {"max", {side, side}}}
-                              : json{{"min", {0, 0, 0}}, {"max", {side, side, side}}};
-    json body = {{"type", "lattice"}, {"group", "solid"}, {"packing", dim == 2 ? "square" : "cubic"}, {"box", box},
-                 {"radius", kDp / 2}, {"spacing", kDp}, {"mass", kRho * std::pow(kDp, dim)}, {"fix", {"rotation"}}};
-    const json all = dim == 2 ? json{{"min", {-1, -1}}, {"max", {1, 1}}} : json{{"min", {-1, -1, -1}}, {"max", {1, 1, 1}}};
-    json set = {{"region", all}, {"velocity_profile", profile}};
-    if (fixed) set["fix"] = {"all"};
-    return {{"dimension", dim},
-            {"plugins", {"sph_solid"}},
-            {"bodies", {body}},
-            {"materials", {{"steel", {{"groups", {"solid"}}, {"rest_density", kRho}, {"youngs_modulus", kE},
-                                      {"poissons_ratio", kNu}, {"smoothing_length", 1.3 * kDp},
-                                      {"particle_spacing", kDp}}}}},
-            {"contact_models", {{{"groups", {"solid", "solid"}}, {"model", "sph_solid"}, {"properties", {{"alpha", 0.0}}}}}},
-            {"passes", {{{"name", "sph_solid_stress"}, {"material", "steel"}, {"properties", {{"artificial_stress", 0.0}}}}}},
-            {"timestep", {{"fixed", dt}}},
-            {"commands", {{{"set", set}}, {{"cycle", cycles}}}}};
-}
-
 SymTensor field_tensor(const World& w, const std::string& prefix, std::size_t i) {
-    const auto at = [&](const char* c) { return w.fields.column(w.fields.index(prefix + c))[i]; };
+    const auto at = [&](const char* c) { return field_at(w, prefix + c, i); };
     return {at("_xx"), at("_yy"), at("_zz"), at("_xy"), at("_yz"), at("_zx")};
 }
 
