@@ -123,6 +123,15 @@ inline void minimum_image(const plab_pass_view& v, double d[3]) {
     }
 }
 
+// x_to - x_from of two bodies of a pass view, as its minimum image in a
+// periodic cell: the pair's separation the way its contact sees it.
+inline Vec3 separation(const plab_pass_view& v, int32_t from, int32_t to) {
+    double d[3];
+    for (int c = 0; c < 3; ++c) d[c] = v.position[3 * to + c] - v.position[3 * from + c];
+    minimum_image(v, d);
+    return {d[0], d[1], d[2]};
+}
+
 } // namespace plab
 
 #endif // PLAB_PASS_HPP

@@ -140,10 +140,7 @@ private:
             int32_t f = v.contact_end1[k], s = v.contact_end2[k];
             if (v.group[f] == solid_) std::swap(f, s);
             if (v.group[f] != fluid_ || v.group[s] != solid_) continue;
-            const Vec3 raw = at(v.position, s) - at(v.position, f);
-            double d[3] = {raw.x, raw.y, raw.z};
-            plab::minimum_image(v, d);  // (a pair across a periodic boundary)
-            const Vec3 from_fluid{d[0], d[1], d[2]};
+            const Vec3 from_fluid = plab::separation(v, f, s);  // (also across a periodic boundary)
             pairs_.push_back({f, s, plab::norm(from_fluid), from_fluid});
         }
     }

@@ -102,9 +102,9 @@ private:
             int32_t s = v.contact_end1[k], f = v.contact_end2[k];
             if (v.group[f] == structure_) std::swap(s, f);
             if (v.group[s] != structure_ || v.group[f] != fluid_) continue;
-            double d[3], r2 = 0;
-            for (int c = 0; c < 3; ++c) d[c] = v.position[3 * s + c] - v.position[3 * f + c];
-            plab::minimum_image(v, d);  // (a pair across a periodic boundary)
+            const plab::Vec3 x_sf = plab::separation(v, f, s);  // x_s - x_f (also across a periodic boundary)
+            const double d[3] = {x_sf.x, x_sf.y, x_sf.z};
+            double r2 = 0;
             for (int c = 0; c < 3; ++c) r2 += d[c] * d[c];
             const double w = W.value(std::sqrt(r2));
             double acc_term = 0;  // (g - a_s)·(x_s - x_f), a_s = F_s/m_s of the last cycle
